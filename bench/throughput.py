@@ -1,6 +1,7 @@
 """Throughput of vw3-decode against tshark on the same frames, three traffic mixes, one run.
 
     python3 bench/throughput.py [--frames 100000] [--repeat 3] [--mix NAME] [--memory] [--gigabyte]
+    python3 bench/throughput.py --against TREE [--frames 20000] [--mix NAME]
 
 Mixes (each generated reproducibly and written as a USER0 pcap, which both tools read: vw3-decode and
 tshark's mbrtu; also written raw, whose vw3-decode summary is printed beside as the raw-stream figure):
@@ -17,6 +18,10 @@ summary of the raw stream of the same frames; peak RSS of every vw3-decode
 run comes from the same runs (timed from a small probe process). Sub-second commands run SHORT_RUNS
 times a round. The package is byte-compiled first, as pip does. It prints the seconds of every run, then one table of ratios from
 this one run. With --memory, peak RSS on each mix repeated tenfold; with --gigabyte, also at 1 GB.
+With --against TREE, every vw3-decode command runs in the same rounds from another checkout too (built:
+`python3 setup.py -q build_ext --inplace` there), on the same files, and its outputs must be the same
+bytes: the table then gives this tree's time over TREE's per command (a change to the engine, measured
+against the commit before it in one run, so that the machine's load hits both alike).
 """
 from __future__ import annotations
 
@@ -76,9 +81,9 @@ print(result.returncode, elapsed, resource.getrusage(resource.RUSAGE_CHILDREN).r
 """
 
 
-def run_once(command: list[str], output: Path) -> tuple[float, float]:
-    """Wall time and peak RSS (MB) of one run of `command`, stdout to `output`."""
-    probe = subprocess.run([sys.executable, "-c", PROBE, str(output), *command], capture_output=True, cwd=ROOT)
+def run_once(command: list[str], output: Path, cwd: Path = ROOT) -> tuple[float, float]:
+    """Wall time and peak RSS (MB) of one run of `command` in the checkout `cwd`, stdout to `output`."""
+    probe = subprocess.run([sys.executable, "-c", PROBE, str(output), *command], capture_output=True, cwd=cwd)
     returncode, elapsed, rss = probe.stdout.split()
     if probe.returncode != 0 or int(returncode) != 0:
         sys.exit(f"failed ({returncode.decode()}): {' '.join(command)}\n{probe.stderr.decode()[-2000:]}")
@@ -92,6 +97,31 @@ def timed(command: list[str], output: Path, repeat: int) -> float:
 
 def peak_rss_mb(command: list[str]) -> float:
     return run_once(command, Path(os.devnull))[1]
+
+
+def against_runs(mix: Mix, frames: int, repeat: int, out: Path, tree: Path) -> dict[str, tuple[float, float]]:
+    """--against: best seconds of each vw3-decode command of `measure` from this tree and from `tree`, in
+    interleaved rounds, as {command: (this tree's, tree's)}; a difference of outputs stops the run."""
+    records = mix.records(frames)
+    raw, pcap = write_capture(records, out / mix.name)
+    print(f"{mix.name}: {len(records)} frames", flush=True)
+    vw3 = VW3 + [str(pcap), *mix.options]
+    runs = {"summary": vw3, "summary raw": VW3 + [str(raw), *mix.options], "--json": vw3 + ["--json"],
+            "-V": vw3 + ["-V"], "--stats": vw3 + ["--stats"]}
+    best = {(name, cwd): float("inf") for name in runs for cwd in (ROOT, tree)}
+    for _round in range(repeat):
+        for name, command in runs.items():
+            outputs = []
+            for cwd in (ROOT, tree):
+                outputs.append(out / f"output-{len(outputs)}.txt")
+                for _ in range(SHORT_RUNS if best[name, cwd] < 1.0 else 1):
+                    best[name, cwd] = min(best[name, cwd], run_once(command, outputs[-1], cwd)[0])
+            if outputs[0].read_bytes() != outputs[1].read_bytes():
+                sys.exit(f"{mix.name} {name}: the outputs of {ROOT} and {tree} differ")
+    result = {name: (best[name, ROOT], best[name, tree]) for name in runs}
+    for name, (ours, theirs) in result.items():
+        print(f"  {name:<16} {ours:8.3f} s  against {theirs:8.3f} s  {ours / theirs:6.3f}", flush=True)
+    return result
 
 
 def measure(mix: Mix, frames: int, repeat: int, out: Path, tshark: str) -> dict[str, tuple[float, float]]:
@@ -179,6 +209,7 @@ def main() -> int:
     parser.add_argument("--gigabyte", action="store_true", help="with --memory: also peak RSS at 1 GB")
     parser.add_argument("--memory-only", action="store_true", help="with --memory: no timings, only peak RSS")
     parser.add_argument("--out", type=Path, default=ROOT / "bench" / "out")
+    parser.add_argument("--against", type=Path, help="another checkout, timed in the same rounds (no tshark)")
     args = parser.parse_args()
     tshark = shutil.which("tshark")
     if tshark is None:
@@ -188,6 +219,16 @@ def main() -> int:
     # this machine) every run would otherwise compile its modules from source again (~60 ms).
     subprocess.run([sys.executable, "-m", "compileall", "-q", str(ROOT / "dissector")], check=True)
     chosen = [mix for mix in MIXES if not args.mix or mix.name in args.mix]
+    if args.against is not None:
+        tree = args.against.resolve()
+        subprocess.run([sys.executable, "-m", "compileall", "-q", str(tree / "dissector")], check=True)
+        compared = {mix.name: against_runs(mix, args.frames, args.repeat, args.out, tree) for mix in chosen}
+        names = list(next(iter(compared.values())))
+        print(f"\n| mix | {' | '.join(names)} |\n|---|{'---:|' * len(names)}")
+        for mix_name, result in compared.items():
+            print(f"| {mix_name} | " + " | ".join(f"{ours / theirs:.3f}" for ours, theirs in result.values()) + " |")
+        print(f"(this tree's best time over {tree}'s, per command: below 1 is faster)")
+        return 0
     if args.memory_only:
         for mix in chosen:
             write_capture(mix.records(args.frames), args.out / mix.name)

@@ -180,6 +180,17 @@ static inline __attribute__((always_inline)) int param_event(Stats *st, int slav
     return changed;
 }
 
+/* Register tables by byte (profiles.TABLES, stats_store.slave_tables' and SlaveTables' bytes), `what` gave
+ * them: 0, or -1 with ValueError when one is past the PARAM_TABLES a key holds. */
+static int tables_valid(const char *tables, Py_ssize_t size, const char *what) {
+    for (Py_ssize_t k = 0; k < size; k++)
+        if ((uint8_t)tables[k] >= PARAM_TABLES) {
+            PyErr_Format(PyExc_ValueError, "%s: tables 0..%d each", what, PARAM_TABLES - 1);
+            return -1;
+        }
+    return 0;
+}
+
 /* The table of a code's registers on the slave's device (Stats.device_tables; else the protocol's), asked
  * again when the slave's namer is another (its device changed: profile `auto`); -1: an error. */
 static int slave_table(Stats *st, Slave *s, int slave, int function) {
@@ -187,17 +198,12 @@ static int slave_table(Stats *st, Slave *s, int slave, int function) {
     if (st->slave_tables[slave] == NULL || st->tables_namer[slave] != s->namer) {
         PyObject *tables = PyObject_CallFunction(st->device_tables, "i", slave);
         if (tables == NULL) return -1;
-        if (!PyBytes_Check(tables) || PyBytes_GET_SIZE(tables) != 256) {
+        if (!PyBytes_Check(tables) || PyBytes_GET_SIZE(tables) != 256 ||
+            tables_valid(PyBytes_AS_STRING(tables), 256, "device tables") < 0) {
+            if (!PyErr_Occurred()) PyErr_SetString(PyExc_TypeError, "device tables: 256 bytes, a table each code");
             Py_DECREF(tables);
-            PyErr_SetString(PyExc_TypeError, "device tables: 256 bytes, a table each code");
             return -1;
         }
-        for (int k = 0; k < 256; k++)
-            if ((uint8_t)PyBytes_AS_STRING(tables)[k] >= PARAM_TABLES) {
-                Py_DECREF(tables);
-                PyErr_SetString(PyExc_ValueError, "device tables: 0..7 each");
-                return -1;
-            }
         Py_XSETREF(st->slave_tables[slave], tables);
         Py_XSETREF(st->tables_namer[slave], Py_XNewRef(s->namer));
     }
@@ -314,15 +320,14 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
 }
 
 /* ---- the Python object ------------------------------------------------------------------------- */
+/* The objects a parameter holds released, each once (the store's end, a merge, a failed rehome). */
+static void param_release(Param *p) {
+    PyObject **held[] = {&p->text, &p->namer, &p->code, &p->code_namer, &p->status};
+    for (size_t k = 0; k < sizeof held / sizeof *held; k++) Py_CLEAR(*held[k]);
+}
+
 static void stats_dealloc(Stats *st) {
-    for (size_t k = 0; k < st->params.count; k++) {
-        Param *p = &PARAMS(st)[k];
-        Py_XDECREF(p->text);
-        Py_XDECREF(p->namer);
-        Py_XDECREF(p->code);
-        Py_XDECREF(p->code_namer);
-        Py_XDECREF(p->status);
-    }
+    for (size_t k = 0; k < st->params.count; k++) param_release(&PARAMS(st)[k]);
     Py_XDECREF(st->report);
     Py_XDECREF(st->device_tables);
     for (int k = 0; k < 256; k++) {
@@ -399,11 +404,7 @@ static int param_merge(Param *kept, Param *moved) {
         kept->last = moved->last, kept->has_last = 1, kept->last_mapped = moved->last_mapped, kept->order = moved->order;
     }
     if (kept->code == NULL) kept->code = moved->code, moved->code = NULL;
-    Py_CLEAR(moved->code);
-    Py_CLEAR(moved->code_namer);
-    Py_CLEAR(moved->status);
-    Py_CLEAR(moved->text);
-    Py_CLEAR(moved->namer);
+    param_release(moved);
     return 0;
 }
 
@@ -416,8 +417,7 @@ static PyObject *stats_rehome(Stats *st, PyObject *args) {
     if (!PyArg_ParseTuple(args, "iy#", &slave, &homes, &size)) return NULL;
     if (slave < 0 || slave > 255 || size > PARAM_TABLES)
         return PyErr_Format(PyExc_ValueError, "rehome: slave 0..255, %d tables at most", PARAM_TABLES);
-    for (Py_ssize_t t = 0; t < size; t++)
-        if ((uint8_t)homes[t] >= PARAM_TABLES) return PyErr_Format(PyExc_ValueError, "rehome: tables 0..7");
+    if (tables_valid(homes, size, "rehome") < 0) return NULL;
     Dense rebuilt = {0};
     for (size_t k = 0; k < st->params.count; k++) {
         Param *p = &PARAMS(st)[k];
@@ -437,14 +437,7 @@ static PyObject *stats_rehome(Stats *st, PyObject *args) {
     st->params = rebuilt;
     Py_RETURN_NONE;
 failed: /* no memory (the run ends on it): what was moved is dropped, each reference released once */
-    for (size_t k = 0; k < rebuilt.count; k++) {
-        Param *p = &((Param *)rebuilt.items)[k];
-        Py_CLEAR(p->code);
-        Py_CLEAR(p->code_namer);
-        Py_CLEAR(p->status);
-        Py_CLEAR(p->text);
-        Py_CLEAR(p->namer);
-    }
+    for (size_t k = 0; k < rebuilt.count; k++) param_release(&((Param *)rebuilt.items)[k]);
     dense_free(&rebuilt);
     return NULL;
 }
@@ -852,7 +845,7 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
 static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
     static char *keywords[] = {"max_keys", "max_params", "max_tally", "tables", "device_tables", NULL};
     Py_ssize_t max_keys, max_params = MAX_PARAMETERS, max_tally = MAX_TALLY, size = 0;
-    const char *tables = NULL;
+    const char *tables = "";
     PyObject *device_tables = Py_None;
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "n|nny#O", keywords, &max_keys, &max_params, &max_tally, &tables,
                                      &size, &device_tables))
@@ -866,14 +859,9 @@ static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
         PyErr_SetString(PyExc_ValueError, "max_keys, max_params and max_tally must be >= 0, tables 256 at most");
         return -1;
     }
+    if (tables_valid(tables, size, "tables") < 0) return -1;
     memset(st->tables, 0, sizeof st->tables);
-    for (Py_ssize_t k = 0; k < size; k++) {
-        if ((uint8_t)tables[k] >= PARAM_TABLES) {
-            PyErr_SetString(PyExc_ValueError, "tables: 0..7 each");
-            return -1;
-        }
-        st->tables[k] = (uint8_t)tables[k];
-    }
+    memcpy(st->tables, tables, (size_t)size);
     st->max_keys = (size_t)max_keys;
     st->max_params = (size_t)max_params;
     for (int k = 0; k < TALLIES; k++) st->tallies[k].limit = TALLY_UNBOUNDED >> k & 1 ? 0 : (size_t)max_tally;
