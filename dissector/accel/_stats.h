@@ -105,13 +105,17 @@ static Param *param_get(Stats *st, int slave, int table, unsigned address, int *
     return p;
 }
 
+/* Is a value, or the read status `status` (a str, of an unreadable read; NULL: the value), the parameter's last
+ * state? 1, 0, -1: error. */
+static inline int same_state(const Param *p, unsigned value, PyObject *status) {
+    if (status == NULL || p->status == NULL) return status == p->status && value == p->last;
+    return PyObject_RichCompareBool(p->status, status, Py_EQ);
+}
+
 /* ParameterTable.param (render/stats_store.py, render/history.py): the state becomes a value, or the read
- * status `status` (a str, of an unreadable read; NULL: the value); a change is a state that differs from
- * the last one, whoever saw each. 1: changed, -1: error. */
+ * status `status`; a change is a state that differs from the last one, whoever saw each. 1: changed, -1: error. */
 static inline int param_state(Param *p, unsigned value, PyObject *status) {
-    int same = status == NULL ? p->status == NULL && value == p->last
-               : p->status == NULL ? 0
-                                   : PyObject_RichCompareBool(p->status, status, Py_EQ);
+    int same = same_state(p, value, status);
     if (same < 0) return -1;
     int changed = p->has_last && !same;
     if (changed) p->counts[PARAM_CHANGES]++;
@@ -185,7 +189,7 @@ static inline __attribute__((always_inline)) int param_event(Stats *st, int slav
 static int tables_valid(const char *tables, Py_ssize_t size, const char *what) {
     for (Py_ssize_t k = 0; k < size; k++)
         if ((uint8_t)tables[k] >= PARAM_TABLES) {
-            PyErr_Format(PyExc_ValueError, "%s: tables 0..%d each", what, PARAM_TABLES - 1);
+            PyErr_Format(PyExc_ValueError, "%s: 0..%d each", what, PARAM_TABLES - 1);
             return -1;
         }
     return 0;
@@ -390,9 +394,7 @@ static int param_merge(Param *kept, Param *moved) {
     for (int j = 0; j < PARAM_COUNTS; j++) kept->counts[j] += moved->counts[j];
     Param *first = kept->order <= moved->order ? kept : moved, *later = first == kept ? moved : kept;
     if (first->has_last && later->has_last) {
-        int same = later->status == NULL ? first->status == NULL && first->last == later->last
-                   : first->status == NULL ? 0
-                                           : PyObject_RichCompareBool(first->status, later->status, Py_EQ);
+        int same = same_state(first, later->last, later->status);
         if (same < 0) return -1;
         if (!same) kept->counts[PARAM_CHANGES]++;
     }
@@ -417,7 +419,7 @@ static PyObject *stats_rehome(Stats *st, PyObject *args) {
     if (!PyArg_ParseTuple(args, "iy#", &slave, &homes, &size)) return NULL;
     if (slave < 0 || slave > 255 || size > PARAM_TABLES)
         return PyErr_Format(PyExc_ValueError, "rehome: slave 0..255, %d tables at most", PARAM_TABLES);
-    if (tables_valid(homes, size, "rehome") < 0) return NULL;
+    if (tables_valid(homes, size, "rehome: tables") < 0) return NULL;
     Dense rebuilt = {0};
     for (size_t k = 0; k < st->params.count; k++) {
         Param *p = &PARAMS(st)[k];

@@ -140,19 +140,14 @@ static inline void out_label(Out *o, long long base, unsigned address) {
         out_uint(o, address, 0);
         return;
     }
-    int digits = 1;
-    long long scale = 1;
-    while (scale * 10 <= base) {
-        scale *= 10;
+    int digits = 5; /* the base's digits, five at least; power: 10 ** (digits - 1) */
+    long long power = 10000;
+    while (power * 10 <= base) {
+        power *= 10;
         digits++;
     }
-    if (digits < 5) {
-        digits = 5;
-        scale = 10000;
-    }
-    long long top = (base / scale + 1) * scale - 1;
     long long number = base + address;
-    if (number > top) {
+    if (number > (base / power + 1) * power - 1) {
         number = base * 10 - 9 + address;
         digits++;
     }
