@@ -165,7 +165,8 @@ class RtuFramer(Bounded, Awaiting, StreamFramer):
         j = end
         while True:
             if final and j == n:
-                return at_end
+                # (live closes the bytes at a silence, finish(silence=True): a boundary, as a file of its reads has)
+                return at_end or self._cut_by_silence
             if self._boundary_at(j):
                 return True
             found = self._valid_frame_at(buf, j, n, final)
