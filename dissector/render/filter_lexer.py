@@ -34,6 +34,7 @@ _TOKEN = re.compile(
   | (?P<string>[rR]?")
   | (?P<char>')
   | (?P<name>[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*)
+  | (?P<layer>\#(?:\d+|\[[^\]]*\]))
   | (?P<op>===|!==|==|!=|~=|<=|>=|&&|\|\||<|>|!|&|~|[-+*/%])
   | (?P<punct>\.\.|[(){},])
     """,
@@ -194,6 +195,9 @@ def tokenize(text: str) -> list[Token]:
         if match is None:
             if text[i] == "=":
                 raise FilterError("a single = is not an operator: use == to compare", text, i)
+            if text[i] == "#":  # (a layer: slave#1, slave#[1-2], as tshark 4.0.17 reads one)
+                raise FilterError(f"expected digit or \"[\" after # (a layer, as slave#1), not "
+                                  f"{text[i + 1:i + 2] or 'the end'!r}", text, i + 1)
             raise FilterError(f"unexpected character {text[i]!r}", text, i)
         group = match.lastgroup
         word = match.group()
@@ -219,7 +223,7 @@ def tokenize(text: str) -> list[Token]:
             raise FilterError("number too long", text, i)
         if group == "number":
             tokens.append(Token("number", word, number(word, text, i), i))
-        elif group in ("bytes", "dashed", "slice"):  # (read by the field they are compared with)
+        elif group in ("bytes", "dashed", "slice", "layer"):  # (read by the field they are compared with)
             tokens.append(Token(group, word, word, i))
         elif group == "name":
             lowered = word.lower()

@@ -16,6 +16,7 @@ from dissector.render.filter_fields import (
 )
 from dissector.render.filter_functions import call
 from dissector.render.filter_match import as_bytes, compile_regex, match_op, quantify
+from dissector.render.filter_syntax import parse_layer
 from dissector.render.filter_values import kind_of, type_name
 from dissector.render.glossary import field_type
 
@@ -46,7 +47,9 @@ def needs_expression(tokens: list[Any], index: int) -> bool:
         return True
     if not at(index, "name"):
         return False
-    i = index + 1 + at(index + 1, "slice")
+    i = index + 1
+    while at(i, "layer") or at(i, "slice"):  # (slave#1, raw[0:2][1])
+        i += 1
     if at(i, "op", *ARITHMETIC) or (at(i, "op", "&") and at(i + 2, "op", *ARITHMETIC)):
         return True
     if not at(i, "op", *COMPARISONS):
@@ -146,6 +149,10 @@ def _bytes(value: Any) -> bytes:
 def _parse_field(p: Any) -> Operand:
     token = p.advance()
     field, ftype, register = p.resolve_field(token)
+    if not parse_layer(p):  # (slave#2: a layer no item has, no value)
+        p.parse_slice(field, ftype)
+        return Operand(token.text, token.position, field_type(field), lambda item, reg: [], register=register,
+                       field=field, tokens=[token])
     tshark_type = field_type(field)
     if field.startswith("fields."):  # a repeated field: each element a value
         key = field[7:]

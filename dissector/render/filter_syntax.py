@@ -111,3 +111,26 @@ def _parse_member(p: Any, field: str, ftype: str) -> tuple[Any, Any]:
         high = p.parse_value(field, ftype)
         return (low, high)
     return (low, low)
+
+
+def parse_layer(p: Any) -> bool:
+    """`slave#1`, `slave#[1-2]`: the layers of a field, as tshark 4.0.17 reads them (p's token after the
+    field's name); whether they hold the first, the only one vw3-decode has (an item is one vw3 layer).
+    True when none follows."""
+    if p.token.kind != "layer":
+        return True
+    token = p.advance()
+    spec = token.text[1:]
+    if spec[0] != "[":
+        return int(spec) == 1
+    ranges = [_slice_range(p, part, token) for part in spec[1:-1].split(",")]
+
+    def holds_first(start: int | None, colon: bool, length: int | None, last: int | None) -> bool:
+        first = (start or 0) + 2 * ((start or 0) < 0)  # (-1: the last layer, the first here)
+        if last is not None:
+            return first <= 1 <= last + 2 * (last < 0)
+        if colon:
+            return first <= 1 and (length is None or first + length > 1)
+        return first == 1
+
+    return any(holds_first(*one) for one in ranges)

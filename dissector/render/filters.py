@@ -100,7 +100,7 @@ from dissector.render.filter_match import (
 )
 
 from dissector.render.filter_ops import needs_expression, parse_expression_test
-from dissector.render.filter_syntax import parse_set, parse_slice
+from dissector.render.filter_syntax import parse_layer, parse_set, parse_slice
 from dissector.render.filter_quantifiers import elements_pass, every_of, every_present, parse_quantified
 from dissector.render.filter_values import TIME_TYPES, bool_literal, kind_of, negative_for_unsigned, time_literal, type_name, uint_limit
 from dissector.render.glossary import field_type
@@ -221,6 +221,12 @@ class _Parser:
     def parse_test(self) -> tuple[Test, bool]:
         name_token = self.advance()
         field, ftype, register = self.resolve_field(name_token)
+        if not parse_layer(self):  # (slave#2: a layer no item has, so no test on it holds)
+            _test, register = self._parse_field_test(field, ftype, register)
+            return (lambda item, reg: False), register
+        return self._parse_field_test(field, ftype, register)
+
+    def _parse_field_test(self, field: str, ftype: str, register: bool) -> tuple[Test, bool]:
         if field.startswith("fields."):
             return self.parse_pdu_key_test(field, field[7:])
         cut = self.parse_slice(field, ftype)

@@ -2,7 +2,7 @@
 shipped captures: what tshark takes selects the same frames, what it refuses vw3-decode refuses (exit 2,
 a message, the filter and a caret under the token, no traceback). Session 56's filter hunt: sets
 (members separated by commas, a range inside braces); slices (blanks inside, C numbers, a slice of a
-slice, a length that is not positive and first-last with first >= last refused); raw strings; true/false fields; any/all quantifiers; negative numbers."""
+slice, a length that is not positive and first-last with first >= last refused); raw strings; true/false fields; any/all quantifiers; negative numbers; layers (#)."""
 from __future__ import annotations
 
 import subprocess
@@ -87,6 +87,19 @@ CASES = [
     ("atv71_commissioning.pcap", "all value > -1", "all vw3.reg.value > -1"),
     ("atv71_commissioning.pcap", "address > -1", "vw3.reg.address > -1"),
     ("atv71_commissioning.pcap", "scaled > -1", "vw3.reg.scaled > -1"),
+    # layers: an item is one vw3 layer, so #1 is the field and any other layer none
+    ("noisy_bus.pcap", "slave#1 == 12", "vw3.slave#1 == 12"),
+    ("noisy_bus.pcap", "slave #1 != 12", "vw3.slave #1 != 12"),
+    ("noisy_bus.pcap", "slave#2 == 12 or slave#0 == 12", "vw3.slave#2 == 12 or vw3.slave#0 == 12"),
+    ("noisy_bus.pcap", "slave#[1-2] == 12", "vw3.slave#[1-2] == 12"),
+    ("noisy_bus.pcap", "slave#[2-3] == 12", "vw3.slave#[2-3] == 12"),
+    ("noisy_bus.pcap", "slave#[-1] == 12", "vw3.slave#[-1] == 12"),
+    ("noisy_bus.pcap", "slave#1", "vw3.slave#1"),
+    ("noisy_bus.pcap", "!slave#2", "!vw3.slave#2"),
+    ("noisy_bus.pcap", "raw#1[0] == 0c", "frame#1[0] == 0c"),
+    ("noisy_bus.pcap", "slave#1 == function", "vw3.slave#1 == vw3.function"),
+    ("noisy_bus.pcap", "len(slave#1) == 1", "len(vw3.slave#1) == 1"),
+    ("atv71_commissioning.pcap", "value#1 == 2", "vw3.reg.value#1 == 2"),
 ]
 
 REFUSED = [
@@ -129,6 +142,8 @@ REFUSED = [
     ("atv71_commissioning.pcap", "ALL value == 2", "ALL vw3.reg.value == 2"),
     ("atv71_commissioning.pcap", "slave == any", "vw3.slave == any"),
     ("noisy_bus.pcap", "slave >= -300", "vw3.slave >= -300"),
+    ("noisy_bus.pcap", "slave#-1 == 12", "vw3.slave#-1 == 12"),
+    ("noisy_bus.pcap", "slave# == 12", "vw3.slave# == 12"),
 ]
 
 
