@@ -179,6 +179,8 @@ def parse_bytes(token: Token) -> bytes | None:
         return bytes.fromhex(re.sub(r"[:.-]", "", word))
     if re.fullmatch(r"(?:[0-9A-Fa-f]{2})+|[0-9A-Fa-f]", word):
         return bytes.fromhex(word.rjust(2, "0"))
+    if re.fullmatch(r"0[xX][0-9A-Fa-f]{2}", word):  # one byte (raw[0] == 0x0c), as tshark 4.0.17: not 0xc
+        return bytes.fromhex(word[2:])
     return None
 
 

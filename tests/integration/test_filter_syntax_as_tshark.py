@@ -2,7 +2,7 @@
 shipped captures: what tshark takes selects the same frames, what it refuses vw3-decode refuses (exit 2,
 a message, the filter and a caret under the token, no traceback). Session 56's filter hunt: sets
 (members separated by commas, a range inside braces); slices (blanks inside, C numbers, a slice of a
-slice, a length that is not positive and first-last with first >= last refused); raw strings; true/false fields; any/all quantifiers; negative numbers; layers (#)."""
+slice, a length that is not positive and first-last with first >= last refused); raw strings; true/false fields; any/all quantifiers; negative numbers; layers (#); a byte written 0xhh."""
 from __future__ import annotations
 
 import subprocess
@@ -100,6 +100,11 @@ CASES = [
     ("noisy_bus.pcap", "slave#1 == function", "vw3.slave#1 == vw3.function"),
     ("noisy_bus.pcap", "len(slave#1) == 1", "len(vw3.slave#1) == 1"),
     ("atv71_commissioning.pcap", "value#1 == 2", "vw3.reg.value#1 == 2"),
+    # a byte written 0xhh
+    ("noisy_bus.pcap", "raw[0] == 0x0c", "frame[0] == 0x0c"),
+    ("noisy_bus.pcap", "raw[0] > 0x0b", "frame[0] > 0x0b"),
+    ("noisy_bus.pcap", "raw contains 0X0C", "frame contains 0X0C"),
+    ("noisy_bus.pcap", "raw[0:2] & 0x0f", "frame[0:2] & 0x0f"),
 ]
 
 REFUSED = [
@@ -144,6 +149,8 @@ REFUSED = [
     ("noisy_bus.pcap", "slave >= -300", "vw3.slave >= -300"),
     ("noisy_bus.pcap", "slave#-1 == 12", "vw3.slave#-1 == 12"),
     ("noisy_bus.pcap", "slave# == 12", "vw3.slave# == 12"),
+    ("noisy_bus.pcap", "raw[0] == 0xc", "frame[0] == 0xc"),
+    ("noisy_bus.pcap", "raw[0:2] == 0x0c03", "frame[0:2] == 0x0c03"),
 ]
 
 
