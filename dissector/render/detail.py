@@ -6,10 +6,12 @@ is decided once and a terminal only adds colour.
 from __future__ import annotations
 
 import math
+import tomllib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from operator import attrgetter
 from datetime import datetime, timezone
+from importlib import resources
 from typing import TYPE_CHECKING, Any
 
 from construct import ListContainer
@@ -19,6 +21,7 @@ from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 from dissector.protocol.printable import printable
 from dissector.render.describe import UNKNOWN_SUBFUNCTION, count_text, named_value, value_names
+from dissector.render.filter_fields import CATALOGUE
 from dissector.render.summary import check_untyped, crc_text, noise_info
 from dissector.render.timefmt import whole_micros
 
@@ -92,6 +95,32 @@ _INT_FIELD_LINES_MAX = 1 << 16
 _ACRONYMS = {"fifo": "FIFO", "mei": "MEI"}
 FUNCTION_LABELS: dict[tuple[int, str], str] = {(24, "address"): "FIFO pointer address"}
 _LABELLED = frozenset(function for function, _key in FUNCTION_LABELS)
+
+
+def _hex_names() -> dict[str, dict[int, str]]:
+    """{PDU field key: its values' names} of the plugin's named fields of base HEX (data/fields.toml's
+    vw3.run_indicator, its PDU fields by data/pdu_fields.toml [pdu]), which Wireshark writes `ON (0xff)`."""
+    text = resources.files("dissector").joinpath("data/pdu_fields.toml").read_text(encoding="utf-8")
+    shows = tomllib.loads(text)["pdu"]
+    names: dict[str, dict[int, str]] = {}
+    for entry in CATALOGUE:
+        if "values" in entry and entry.get("base") == "HEX":
+            for pdu in shows.get(entry["filter"], ()):
+                names[pdu.split(".")[1]] = SPEC.names[entry["values"]]
+    return names
+
+
+_HEX_NAMES = _hex_names()
+
+
+def _hex_named(key: str, value: Any) -> str:
+    """A value of a field of _HEX_NAMES as the plugin's tree writes it: its name (`Unknown` for none) and its
+    byte in lower-case hex, Wireshark's way. The decoder gives a named value as its name (`ON`)."""
+    names = _HEX_NAMES[key]
+    number = getattr(value, "intvalue", value)
+    if isinstance(number, str):  # (a name without its number: the one the spec gives it)
+        number = next(code for code, name in names.items() if name == number)
+    return f"{names.get(number, 'Unknown')} (0x{number:02x})"
 
 
 def field_label(key: str, function: int | None = None) -> str:
@@ -260,7 +289,11 @@ def _field_lines(detail: _Detail, depth: int, name: str, value: Any) -> None:
         for index, inner in enumerate(value):
             _field_lines(detail, depth + 1, f"[{index}]", inner)
     elif isinstance(value, bytes):
-        texts.append(f"{label}: {value.hex(' ') or '(empty)'}")
+        # (none: no line, as the plugin's tree and Wireshark's modbus show no empty field, FC12's no events)
+        if value:
+            texts.append(f"{label}: {value.hex(' ')}")
+    elif name in _HEX_NAMES:  # `Run indicator: ON (0xff)`, `Unknown (0x76)`: named or not, as the plugin's
+        texts.append(f"{label}: {_hex_named(name, value)}")
     elif isinstance(value, int) and not isinstance(value, bool):
         names = value_names().get(name)  # (the plugin's value strings: `Read code: basic (1)`)
         texts.append(f"{label}: {value} (0x{value:X})" if names is None else f"{label}: {named_value(names, value)}")
@@ -352,7 +385,7 @@ def _head_lines(detail: _Detail, frame: Frame) -> None:
         for key, value in frame.fields.items():
             if value is None or key[0] == "_" or key in ("values", "status") and registers:
                 continue
-            if type(value) is int:  # the common case, inline and kept: `Start: 8400 (0x20D0)`
+            if type(value) is int and key not in _HEX_NAMES:  # the common case, inline and kept: `Start: 8400 (0x20D0)`
                 kept = (function, key) if labelled else key
                 line = lines.get((kept, value))
                 if line is None:

@@ -22,7 +22,7 @@ def check_decoded(request: bytes, response: bytes, text: str) -> None:
         "        Function: 17 (0x11) Report Server ID\n"
         f"        Byte count: {count} (0x{count:X})\n"
         "        Server id: 180 (0xB4)\n"
-        "        Run indicator: ON\n"
+        "        Run indicator: ON (0xff)\n"
         f"        Additional data: {text}\n"
     ) in detail
     lines = [json.loads(line) for line in _decoded(request + response, "--json").splitlines()]
