@@ -8686,11 +8686,23 @@ local function remember_request(bytes, item, device)
   end
 end
 
+-- An item's bytes, before take_items drops the tables they are read from.
+local function raw_of(item)
+  if item.kind == NOISE then return string_of(item.bytes, 1, item.length) end
+  if item.ascii then return string_of(item.src, item.src_at, item.length) end
+  return string_of(item.b, item.bi, item.length)
+end
+
 -- Number, pair, decode and annotate the items the framer gave out while `record` was fed. Each is shown
 -- in the record that holds its last byte (the framer may have needed later bytes to decide; Wireshark's
 -- later passes show it there): through that record's bytes when they hold it whole, else through its
 -- own bytes (a frame or noise run that began in earlier records, which say where it went).
-take_items = function(st, items, record)
+-- showing: `record` is being dissected for the first time. An item it decided whose bytes are all in
+-- earlier records (noise known as such only once later bytes came) is kept in the earliest record that
+-- shows it on the later passes, but that one has been shown already, once and for all in tshark's one
+-- pass: it is shown in `record` too, this time only (st.late, show.lua show_record), from its own bytes,
+-- with the records they came from.
+take_items = function(st, items, record, showing)
   local open = st.open
   for index = 1, #items do
     local item = items[index]
@@ -8705,6 +8717,22 @@ take_items = function(st, items, record)
       end
     end
     item.record = home.number
+    if showing and home ~= record then
+      local from = {} -- (the numbers of the records holding its bytes, in order)
+      for at = 1, #open do
+        local earlier = open[at]
+        if earlier.start < offset + length and offset < earlier.start + earlier.length then
+          from[#from + 1] = earlier.number
+        end
+      end
+      local late = st.late
+      if late == nil or late.record ~= record then
+        late = { record = record }
+        st.late = late
+      end
+      late[#late + 1] = { item = item, raw = raw_of(item), from = from }
+      item.late_in = record.number -- (where a frame that links to it finds it on that showing; not packed)
+    end
     local first = home.start or offset -- (a closed record holds no bytes still to frame)
     local last = home[#home]
     local inside = offset >= first and offset + length <= first + (home.length or length)
@@ -8723,19 +8751,14 @@ take_items = function(st, items, record)
       end
     else
       item.at = 0
-      if item.kind == NOISE then
-        item.raw = string_of(item.bytes, 1, length)
-      elseif item.ascii then
-        item.raw = string_of(item.src, item.src_at, length)
-      else
-        item.raw = string_of(item.b, item.bi, length)
-      end
+      item.raw = raw_of(item)
       for _, earlier in ipairs(open) do
         local from, to = earlier.start, earlier.start + earlier.length
         if earlier ~= home and from < offset + length and offset < to then
           earlier.continued = earlier.continued or {}
           earlier.continued[#earlier.continued + 1] = {
             item = item.number, record = home.number, count = math.min(to, offset + length) - math.max(from, offset),
+            noise = item.kind == NOISE or nil, -- (bytes that continue no frame: the display says noise)
           }
         end
       end
@@ -8751,6 +8774,12 @@ take_items = function(st, items, record)
   -- Records all of whose bytes are framed are done with; the others say how many of their bytes wait.
   local waiting_from = st.base
   if st.noise ~= nil then waiting_from = st.noise.offset end
+  if showing then
+    -- How many of the record's waiting bytes are noise already (a run that goes on: its end is not known),
+    -- which its first dissection says rather than that they continue a frame (show_record).
+    local stop = record.start + record.length
+    st.noise_for, st.noise_waiting = record, math.max(0, math.min(st.base, stop) - math.max(waiting_from, record.start))
+  end
   local count, kept = #open, 0 -- (compacted in place: no new list a record)
   for index = 1, count do
     local earlier = open[index]
@@ -8983,6 +9012,7 @@ end
 
 dissect_record = function(st, bytes, time, number)
   local n = #bytes
+  st.late = nil -- (the record before's, shown with it or never: the quick lanes show no tree)
   if st.mode == nil and n > 0 then st.mode = sample_mode(bytes, true) end -- (its bytes alone tell)
   local built = nil
   if st.open[1] == nil then
@@ -9003,7 +9033,7 @@ dissect_record = function(st, bytes, time, number)
   local record = { number = number, start = st.base + st.n, length = n, waiting = nil }
   st.open[#st.open + 1] = record
   st.last = record
-  take_items(st, feed(st, bytes, time, true, false, built), record)
+  take_items(st, feed(st, bytes, time, true, false, built), record, true)
   return record
 end
 
@@ -9110,6 +9140,7 @@ function lane.again(st)
     end
   end
   if paused then collectgarbage("setpause", pause) end
+  fresh.late = nil -- (what the last record decided for earlier ones: shown already, on its first showing)
   finish_safely(fresh)
   -- Records read after this (Wireshark's packet details opened during a live capture) are read once, as
   -- vw3-decode --live reads them: a frame of a slave still judged is provisional again.
@@ -10003,8 +10034,12 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
         if object.text then sub:add(pf.object_text, r, object.text):set_generated() end
       end
     end
-    if f.request ~= nil then
-      t:add(pf.request_frame, whole, f.request.record):set_generated()
+    local request = f.request
+    if request ~= nil then
+      -- (a request a later record settled, on that record's first showing: the record that showed it too)
+      local shown_in = request.record
+      if request.late_in ~= nil and not pinfo.visited then shown_in = request.late_in end
+      t:add(pf.request_frame, whole, shown_in):set_generated()
       local delta = lane.response_time(f) -- (show.lua)
       if delta ~= nil then t:add(pf.response_time, whole, delta):set_generated() end
     end
@@ -10109,6 +10144,29 @@ local function add_part(summaries, info, text)
   return { info, text }, nil
 end
 
+-- Show one item of a record from `shown_from` (the record's tvb, or one of its own bytes) and add its
+-- Info text (`from`: where its bytes came from, when they are another record's). Returns its tree item and
+-- the Info parts (add_part).
+local function show_item(st, item, shown_from, tree, pinfo, full, summaries, info, from)
+  local t
+  if item.kind == NOISE then
+    -- (a run of the same noise, kept as one entry: its texts made once, for each of its items)
+    local bytes = count_text(item.length, "byte")
+    local text = format("noise (%s)", bytes) .. (from or "")
+    local expert_text = format("%s outside any frame: %s", bytes, item.reason)
+    for k = 0, (item.count or 1) - 1 do
+      local shown = show_noise(item, shown_from, tree, full, k, expert_text)
+      t = t or shown
+      summaries, info = add_part(summaries, info, text)
+    end
+  else
+    t = show_frame(st, item, shown_from, tree, pinfo, full)
+    local text = item.info or summary(item, shown_from, st) -- (info: see known_requests)
+    summaries, info = add_part(summaries, info, from and text .. from or text)
+  end
+  return t, summaries, info
+end
+
 -- Show a record's items; the record-level notes go on the first item shown (or an item of their own),
 -- so that they show in the details, not under a hidden item. A record kept as one packed frame is a
 -- number (see pack.settle). whole: the record is one frame just taken by dissect_record's fast lane (not
@@ -10145,37 +10203,49 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
   if continued ~= nil then
     summaries = {}
     for _, part in ipairs(continued) do
-      local text = format("%s in item %d (record %d)", continue_text(part.count), part.item, part.record)
+      -- (noise: bytes of a run that goes on in later records, which continue no frame)
+      local said = part.noise and count_text(part.count, "byte") .. " of noise" or continue_text(part.count)
+      local text = format("%s in item %d (record %d)", said, part.item, part.record)
       if full then
         local count = math.min(part.count, n) -- (the record's last bytes: those the frame goes on with)
         local range = tvb:range(n - count, count)
-        local t = tree:add(proto, range, "VW3 bytes of a frame shown in a later record: " .. text)
+        local t = tree:add(proto, range, format("VW3 bytes of %s shown in a later record: %s",
+          part.noise and "noise" or "a frame", text))
         t:add(pf.continued_in, range, part.record):set_generated()
         anchor = anchor or t
       end
-      summaries[#summaries + 1] = format("(%s in #%d)", continue_text(part.count), part.record)
+      summaries[#summaries + 1] = format("(%s in #%d)", said, part.record)
+    end
+  end
+  -- Items this record decided that the later passes show in earlier records (take_items, st.late): its
+  -- first dissection, the only one tshark's single pass makes, shows them here, before its own.
+  -- (not where lane.again or a change of mode decoded the record again, unseen: only its first showing)
+  local late = st.late
+  if late ~= nil and late.record == record and not pinfo.visited then
+    st.late = nil
+    for index = 1, #late do
+      local entry = late[index]
+      local item, from = entry.item, entry.from
+      local shown_from = ByteArray.new(entry.raw, true):tvb(item.kind == NOISE and "VW3 noise" or "VW3 frame from earlier records")
+      local at, count = item.at, item.count
+      item.at, item.count = 0, nil -- (its own bytes; a run of the same noise is shown item by item)
+      local records = "#" .. concat(from, ", #")
+      local t
+      t, summaries, info = show_item(st, item, shown_from, tree, pinfo, full, summaries, info, " from " .. records)
+      item.at, item.count = at, count
+      if full then
+        local text = format("Bytes from record%s %s", #from > 1 and "s" or "", concat(from, ", "))
+        t:add(proto, shown_from:range(0, item.length), text):set_generated()
+      end
+      anchor = anchor or t
     end
   end
   local frames = 0
   for index = 1, #record do
     local item = pack.expand(record[index], st)
-    local shown_from = item_tvb(item, tvb)
     local t
-    if item.kind == NOISE then
-      -- (a run of the same noise, kept as one entry: its texts made once, for each of its items)
-      local bytes = count_text(item.length, "byte")
-      local text = format("noise (%s)", bytes)
-      local expert_text = format("%s outside any frame: %s", bytes, item.reason)
-      for k = 0, (item.count or 1) - 1 do
-        local shown = show_noise(item, shown_from, tree, full, k, expert_text)
-        t = t or shown
-        summaries, info = add_part(summaries, info, text)
-      end
-    else
-      frames = frames + 1
-      t = show_frame(st, item, shown_from, tree, pinfo, full)
-      summaries, info = add_part(summaries, info, item.info or summary(item, shown_from, st)) -- (info: see known_requests)
-    end
+    t, summaries, info = show_item(st, item, item_tvb(item, tvb), tree, pinfo, full, summaries, info)
+    if item.kind ~= NOISE then frames = frames + 1 end
     anchor = anchor or t
   end
   if frames > 1 then
@@ -10185,11 +10255,31 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
   for index = 1, #errors do
     anchor = record_note(anchor, tree, full, tvb, n, ex.preference, "Preferences: " .. errors[index])
   end
-  if record.waiting ~= nil and record.waiting > 0 then
-    local text = format("The record ends inside a frame: its last %s framed with the next records'",
-      record.waiting == 1 and "byte is" or format("%d bytes are", record.waiting))
-    anchor = record_note(anchor, tree, full, tvb, n, ex.partial, text)
-    summaries, info = add_part(summaries, info, format("(%s)", continue_text(record.waiting)))
+  local waiting = record.waiting
+  if waiting ~= nil and waiting > 0 then
+    -- (the newest record's: the bytes of them that are noise already, in a run whose end is not known)
+    local noise = st.noise_for == record and st.noise_waiting or 0
+    if noise > 0 then
+      local bytes = count_text(noise, "byte")
+      local text = format("The record ends inside a noise run: %s of noise so far, shown as an item with the next"
+        .. " records' bytes that end the run", bytes)
+      local t = anchor or tree
+      if full then -- (on those bytes: the record's waiting bytes begin with them)
+        local range = tvb:range(n - waiting, noise)
+        t = tree:add(proto, range, "VW3 noise so far, " .. bytes)
+        t:add(pf.data, range)
+      end
+      anchor = anchor or t
+      add_text(t, ex.partial, text)
+      summaries, info = add_part(summaries, info, format("noise (%s so far)", bytes))
+      waiting = waiting - noise
+    end
+    if waiting > 0 then
+      local text = format("The record ends inside a frame: its last %s framed with the next records'",
+        waiting == 1 and "byte is" or format("%d bytes are", waiting))
+      anchor = record_note(anchor, tree, full, tvb, n, ex.partial, text)
+      summaries, info = add_part(summaries, info, format("(%s)", continue_text(waiting)))
+    end
   end
   cols.info = info or (summaries and concat(summaries, "; ")) or ""
 end

@@ -125,11 +125,23 @@ local function remember_request(bytes, item, device)
   end
 end
 
+-- An item's bytes, before take_items drops the tables they are read from.
+local function raw_of(item)
+  if item.kind == NOISE then return string_of(item.bytes, 1, item.length) end
+  if item.ascii then return string_of(item.src, item.src_at, item.length) end
+  return string_of(item.b, item.bi, item.length)
+end
+
 -- Number, pair, decode and annotate the items the framer gave out while `record` was fed. Each is shown
 -- in the record that holds its last byte (the framer may have needed later bytes to decide; Wireshark's
 -- later passes show it there): through that record's bytes when they hold it whole, else through its
 -- own bytes (a frame or noise run that began in earlier records, which say where it went).
-take_items = function(st, items, record)
+-- showing: `record` is being dissected for the first time. An item it decided whose bytes are all in
+-- earlier records (noise known as such only once later bytes came) is kept in the earliest record that
+-- shows it on the later passes, but that one has been shown already, once and for all in tshark's one
+-- pass: it is shown in `record` too, this time only (st.late, show.lua show_record), from its own bytes,
+-- with the records they came from.
+take_items = function(st, items, record, showing)
   local open = st.open
   for index = 1, #items do
     local item = items[index]
@@ -144,6 +156,22 @@ take_items = function(st, items, record)
       end
     end
     item.record = home.number
+    if showing and home ~= record then
+      local from = {} -- (the numbers of the records holding its bytes, in order)
+      for at = 1, #open do
+        local earlier = open[at]
+        if earlier.start < offset + length and offset < earlier.start + earlier.length then
+          from[#from + 1] = earlier.number
+        end
+      end
+      local late = st.late
+      if late == nil or late.record ~= record then
+        late = { record = record }
+        st.late = late
+      end
+      late[#late + 1] = { item = item, raw = raw_of(item), from = from }
+      item.late_in = record.number -- (where a frame that links to it finds it on that showing; not packed)
+    end
     local first = home.start or offset -- (a closed record holds no bytes still to frame)
     local last = home[#home]
     local inside = offset >= first and offset + length <= first + (home.length or length)
@@ -162,19 +190,14 @@ take_items = function(st, items, record)
       end
     else
       item.at = 0
-      if item.kind == NOISE then
-        item.raw = string_of(item.bytes, 1, length)
-      elseif item.ascii then
-        item.raw = string_of(item.src, item.src_at, length)
-      else
-        item.raw = string_of(item.b, item.bi, length)
-      end
+      item.raw = raw_of(item)
       for _, earlier in ipairs(open) do
         local from, to = earlier.start, earlier.start + earlier.length
         if earlier ~= home and from < offset + length and offset < to then
           earlier.continued = earlier.continued or {}
           earlier.continued[#earlier.continued + 1] = {
             item = item.number, record = home.number, count = math.min(to, offset + length) - math.max(from, offset),
+            noise = item.kind == NOISE or nil, -- (bytes that continue no frame: the display says noise)
           }
         end
       end
@@ -190,6 +213,12 @@ take_items = function(st, items, record)
   -- Records all of whose bytes are framed are done with; the others say how many of their bytes wait.
   local waiting_from = st.base
   if st.noise ~= nil then waiting_from = st.noise.offset end
+  if showing then
+    -- How many of the record's waiting bytes are noise already (a run that goes on: its end is not known),
+    -- which its first dissection says rather than that they continue a frame (show_record).
+    local stop = record.start + record.length
+    st.noise_for, st.noise_waiting = record, math.max(0, math.min(st.base, stop) - math.max(waiting_from, record.start))
+  end
   local count, kept = #open, 0 -- (compacted in place: no new list a record)
   for index = 1, count do
     local earlier = open[index]
@@ -422,6 +451,7 @@ end
 
 dissect_record = function(st, bytes, time, number)
   local n = #bytes
+  st.late = nil -- (the record before's, shown with it or never: the quick lanes show no tree)
   if st.mode == nil and n > 0 then st.mode = sample_mode(bytes, true) end -- (its bytes alone tell)
   local built = nil
   if st.open[1] == nil then
@@ -442,7 +472,7 @@ dissect_record = function(st, bytes, time, number)
   local record = { number = number, start = st.base + st.n, length = n, waiting = nil }
   st.open[#st.open + 1] = record
   st.last = record
-  take_items(st, feed(st, bytes, time, true, false, built), record)
+  take_items(st, feed(st, bytes, time, true, false, built), record, true)
   return record
 end
 
@@ -549,6 +579,7 @@ function lane.again(st)
     end
   end
   if paused then collectgarbage("setpause", pause) end
+  fresh.late = nil -- (what the last record decided for earlier ones: shown already, on its first showing)
   finish_safely(fresh)
   -- Records read after this (Wireshark's packet details opened during a live capture) are read once, as
   -- vw3-decode --live reads them: a frame of a slave still judged is provisional again.

@@ -283,8 +283,12 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
         if object.text then sub:add(pf.object_text, r, object.text):set_generated() end
       end
     end
-    if f.request ~= nil then
-      t:add(pf.request_frame, whole, f.request.record):set_generated()
+    local request = f.request
+    if request ~= nil then
+      -- (a request a later record settled, on that record's first showing: the record that showed it too)
+      local shown_in = request.record
+      if request.late_in ~= nil and not pinfo.visited then shown_in = request.late_in end
+      t:add(pf.request_frame, whole, shown_in):set_generated()
       local delta = lane.response_time(f) -- (show.lua)
       if delta ~= nil then t:add(pf.response_time, whole, delta):set_generated() end
     end
@@ -389,6 +393,29 @@ local function add_part(summaries, info, text)
   return { info, text }, nil
 end
 
+-- Show one item of a record from `shown_from` (the record's tvb, or one of its own bytes) and add its
+-- Info text (`from`: where its bytes came from, when they are another record's). Returns its tree item and
+-- the Info parts (add_part).
+local function show_item(st, item, shown_from, tree, pinfo, full, summaries, info, from)
+  local t
+  if item.kind == NOISE then
+    -- (a run of the same noise, kept as one entry: its texts made once, for each of its items)
+    local bytes = count_text(item.length, "byte")
+    local text = format("noise (%s)", bytes) .. (from or "")
+    local expert_text = format("%s outside any frame: %s", bytes, item.reason)
+    for k = 0, (item.count or 1) - 1 do
+      local shown = show_noise(item, shown_from, tree, full, k, expert_text)
+      t = t or shown
+      summaries, info = add_part(summaries, info, text)
+    end
+  else
+    t = show_frame(st, item, shown_from, tree, pinfo, full)
+    local text = item.info or summary(item, shown_from, st) -- (info: see known_requests)
+    summaries, info = add_part(summaries, info, from and text .. from or text)
+  end
+  return t, summaries, info
+end
+
 -- Show a record's items; the record-level notes go on the first item shown (or an item of their own),
 -- so that they show in the details, not under a hidden item. A record kept as one packed frame is a
 -- number (see pack.settle). whole: the record is one frame just taken by dissect_record's fast lane (not
@@ -425,37 +452,49 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
   if continued ~= nil then
     summaries = {}
     for _, part in ipairs(continued) do
-      local text = format("%s in item %d (record %d)", continue_text(part.count), part.item, part.record)
+      -- (noise: bytes of a run that goes on in later records, which continue no frame)
+      local said = part.noise and count_text(part.count, "byte") .. " of noise" or continue_text(part.count)
+      local text = format("%s in item %d (record %d)", said, part.item, part.record)
       if full then
         local count = math.min(part.count, n) -- (the record's last bytes: those the frame goes on with)
         local range = tvb:range(n - count, count)
-        local t = tree:add(proto, range, "VW3 bytes of a frame shown in a later record: " .. text)
+        local t = tree:add(proto, range, format("VW3 bytes of %s shown in a later record: %s",
+          part.noise and "noise" or "a frame", text))
         t:add(pf.continued_in, range, part.record):set_generated()
         anchor = anchor or t
       end
-      summaries[#summaries + 1] = format("(%s in #%d)", continue_text(part.count), part.record)
+      summaries[#summaries + 1] = format("(%s in #%d)", said, part.record)
+    end
+  end
+  -- Items this record decided that the later passes show in earlier records (take_items, st.late): its
+  -- first dissection, the only one tshark's single pass makes, shows them here, before its own.
+  -- (not where lane.again or a change of mode decoded the record again, unseen: only its first showing)
+  local late = st.late
+  if late ~= nil and late.record == record and not pinfo.visited then
+    st.late = nil
+    for index = 1, #late do
+      local entry = late[index]
+      local item, from = entry.item, entry.from
+      local shown_from = ByteArray.new(entry.raw, true):tvb(item.kind == NOISE and "VW3 noise" or "VW3 frame from earlier records")
+      local at, count = item.at, item.count
+      item.at, item.count = 0, nil -- (its own bytes; a run of the same noise is shown item by item)
+      local records = "#" .. concat(from, ", #")
+      local t
+      t, summaries, info = show_item(st, item, shown_from, tree, pinfo, full, summaries, info, " from " .. records)
+      item.at, item.count = at, count
+      if full then
+        local text = format("Bytes from record%s %s", #from > 1 and "s" or "", concat(from, ", "))
+        t:add(proto, shown_from:range(0, item.length), text):set_generated()
+      end
+      anchor = anchor or t
     end
   end
   local frames = 0
   for index = 1, #record do
     local item = pack.expand(record[index], st)
-    local shown_from = item_tvb(item, tvb)
     local t
-    if item.kind == NOISE then
-      -- (a run of the same noise, kept as one entry: its texts made once, for each of its items)
-      local bytes = count_text(item.length, "byte")
-      local text = format("noise (%s)", bytes)
-      local expert_text = format("%s outside any frame: %s", bytes, item.reason)
-      for k = 0, (item.count or 1) - 1 do
-        local shown = show_noise(item, shown_from, tree, full, k, expert_text)
-        t = t or shown
-        summaries, info = add_part(summaries, info, text)
-      end
-    else
-      frames = frames + 1
-      t = show_frame(st, item, shown_from, tree, pinfo, full)
-      summaries, info = add_part(summaries, info, item.info or summary(item, shown_from, st)) -- (info: see known_requests)
-    end
+    t, summaries, info = show_item(st, item, item_tvb(item, tvb), tree, pinfo, full, summaries, info)
+    if item.kind ~= NOISE then frames = frames + 1 end
     anchor = anchor or t
   end
   if frames > 1 then
@@ -465,11 +504,31 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
   for index = 1, #errors do
     anchor = record_note(anchor, tree, full, tvb, n, ex.preference, "Preferences: " .. errors[index])
   end
-  if record.waiting ~= nil and record.waiting > 0 then
-    local text = format("The record ends inside a frame: its last %s framed with the next records'",
-      record.waiting == 1 and "byte is" or format("%d bytes are", record.waiting))
-    anchor = record_note(anchor, tree, full, tvb, n, ex.partial, text)
-    summaries, info = add_part(summaries, info, format("(%s)", continue_text(record.waiting)))
+  local waiting = record.waiting
+  if waiting ~= nil and waiting > 0 then
+    -- (the newest record's: the bytes of them that are noise already, in a run whose end is not known)
+    local noise = st.noise_for == record and st.noise_waiting or 0
+    if noise > 0 then
+      local bytes = count_text(noise, "byte")
+      local text = format("The record ends inside a noise run: %s of noise so far, shown as an item with the next"
+        .. " records' bytes that end the run", bytes)
+      local t = anchor or tree
+      if full then -- (on those bytes: the record's waiting bytes begin with them)
+        local range = tvb:range(n - waiting, noise)
+        t = tree:add(proto, range, "VW3 noise so far, " .. bytes)
+        t:add(pf.data, range)
+      end
+      anchor = anchor or t
+      add_text(t, ex.partial, text)
+      summaries, info = add_part(summaries, info, format("noise (%s so far)", bytes))
+      waiting = waiting - noise
+    end
+    if waiting > 0 then
+      local text = format("The record ends inside a frame: its last %s framed with the next records'",
+        waiting == 1 and "byte is" or format("%d bytes are", waiting))
+      anchor = record_note(anchor, tree, full, tvb, n, ex.partial, text)
+      summaries, info = add_part(summaries, info, format("(%s)", continue_text(waiting)))
+    end
   end
   cols.info = info or (summaries and concat(summaries, "; ")) or ""
 end

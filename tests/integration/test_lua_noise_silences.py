@@ -2,8 +2,8 @@
 flush_noise; feed.lua consume keeps the record before one the framer stops at), as vw3-decode does
 (framing/stream.py): noise records a second apart were one item of all their bytes, shown in the last record
 ('(3 bytes continue in #10)' in the others); now each is its own. The plugin has no line speed setting: its
-t3.5 is 19200 baud's, the Python framers' without --baud. Exact Info with -2 (one pass still shows '(3 bytes
-continue)' until a frame or the end: the run is one for the framer's decisions), every field as vw3-decode
+t3.5 is 19200 baud's, the Python framers' without --baud. Exact Info with -2 (one pass shows 'noise (2 bytes so
+far)' until a frame or the end: the run is one for the framer's decisions), every field as vw3-decode
 says it."""
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ def test_noise_records_a_second_apart(tmp_path: Path) -> None:
 def test_noise_without_a_silence_stays_one_run(tmp_path: Path) -> None:
     # (2 ms apart: 0.28 ms of silence after 3 characters at 19200 baud, below t3.5)
     records = [(NOISE, 0.0), (NOISE, 0.002), (NOISE + REQUEST, 3.0), (NOISE, 4.0)]
-    _check(tmp_path, records, ["(3 bytes continue in #2)", "noise (6 bytes)",
+    _check(tmp_path, records, ["(3 bytes of noise in #2)", "noise (6 bytes)",
                                "noise (3 bytes); 12 Read Holding Registers request 8400..8402 (3)", "noise (3 bytes)"])
 
 
@@ -49,4 +49,4 @@ def test_a_silence_before_the_record_the_framer_stopped_at(tmp_path: Path) -> No
                *((bytes(16), 1.01 + k / 100) for k in range(3))]
     _check(tmp_path, records, ["noise (1 byte)",
                                "noise (3 bytes); 12 Read Holding Registers exception 2 (Illegal Data Address)",
-                               "(16 bytes continue in #5)", "(16 bytes continue in #5)", "noise (48 bytes)"])
+                               "(16 bytes of noise in #5)", "(16 bytes of noise in #5)", "noise (48 bytes)"])

@@ -3,7 +3,7 @@ framer waited for bytes past the answer's record (a frame starting inside it, '0
 crossed that record's end), so that record and every later one showed '(N bytes continue)' and no frame, up
 to the end of the capture. Records that are frames say no frame crosses their ends (framing/rtu.py _match,
 lua/src/rtu.lua match): an answer that is its own record is shown in it; one that shares its record with the request
-is settled by the next record, a frame (one pass cannot show it there: -2 does). Exact Info, one pass and
+is settled by the next record, a frame (one pass shows it in that record, from its own bytes; -2 in its own). Exact Info, one pass and
 -2, and every field as vw3-decode says it (reading once; reading twice)."""
 from __future__ import annotations
 
@@ -50,10 +50,14 @@ def test_an_answer_with_a_bad_crc_in_its_own_record(tmp_path: Path) -> None:
 
 def test_an_answer_with_a_bad_crc_after_its_request_in_one_record(tmp_path: Path) -> None:
     pcap = _pcap(tmp_path, "together", [(REQUEST + BAD, 0.0), *LATE])
+    # (the answer, settled by record 2: shown in record 2 in one pass, in record 1 by -2)
     assert _infos(pcap, two_pass=False) == [
-        f"{READ} [provisional]; (11 bytes continue)", f"{READ} [provisional]", f"{ANSWERED} [provisional]",
-        f"{READ} [provisional]", ANSWERED]
+        f"{READ} [provisional]; (11 bytes continue)", f"{ANSWERED} [provisional] BAD CRC from #1; {READ} [provisional]",
+        f"{ANSWERED} [provisional]", f"{READ} [provisional]", ANSWERED]
     assert _infos(pcap, two_pass=True) == [f"{READ}; {ANSWERED} BAD CRC", READ, ANSWERED, READ, ANSWERED]
+    one, _, _ = lua_items(pcap, two_pass=False)
+    differences = compare(python_items(pcap, one_pass=True), one, ignore=LATER)
+    assert not differences, "\n".join(differences[:40])
     two, _, _ = lua_items(pcap)
     differences = compare(python_items(pcap), two)
     assert not differences, "\n".join(differences[:40])

@@ -9,6 +9,7 @@ whose CRC checks at its end is a frame of its own too. Exact Info, one pass and 
 says it."""
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -38,8 +39,8 @@ def test_a_long_reading_after_a_damaged_request_is_settled_by_the_next_record(tm
     pcap = _capture(tmp_path, [REQUEST, ANSWER, DAMAGED + bytes.fromhex("0c01be11"), REQUEST, ANSWER, REQUEST,
                                ANSWER])
     assert _infos(pcap, two_pass=False) == [
-        f"{READ} [provisional]", f"{ANSWERED} [provisional]", "(12 bytes continue)", f"{READ} [provisional]",
-        ANSWERED, READ, ANSWERED]
+        f"{READ} [provisional]", f"{ANSWERED} [provisional]", "(12 bytes continue)",
+        f"noise (12 bytes) from #3; {READ} [provisional]", ANSWERED, READ, ANSWERED]
     assert _infos(pcap, two_pass=True) == [READ, ANSWERED, "noise (12 bytes)", READ, ANSWERED, READ, ANSWERED]
     _same_as_vw3_decode(pcap)
 
@@ -48,7 +49,7 @@ def test_a_reading_whose_length_has_not_come_is_settled_by_the_next_record(tmp_p
     pcap = _capture(tmp_path, [REQUEST, ANSWER, DAMAGED + bytes.fromhex("0c170001"), COUNTER, REQUEST, ANSWER])
     assert _infos(pcap, two_pass=False) == [
         f"{READ} [provisional]", f"{ANSWERED} [provisional]", "(12 bytes continue)",
-        f"{COUNTED} [provisional]", f"{READ} [provisional]", ANSWERED]
+        f"noise (12 bytes) from #3; {COUNTED} [provisional]", f"{READ} [provisional]", ANSWERED]
     assert _infos(pcap, two_pass=True) == [READ, ANSWERED, "noise (12 bytes)", COUNTED, READ, ANSWERED]
     _same_as_vw3_decode(pcap)
 
@@ -57,7 +58,7 @@ def test_a_frame_start_whose_length_has_not_come_is_settled_by_the_next_record(t
     pcap = _capture(tmp_path, [REQUEST, ANSWER, bytes.fromhex("0c170001"), COUNTER, REQUEST, ANSWER])
     assert _infos(pcap, two_pass=False) == [
         f"{READ} [provisional]", f"{ANSWERED} [provisional]", "(4 bytes continue)",
-        f"{COUNTED} [provisional]", f"{READ} [provisional]", ANSWERED]
+        f"noise (4 bytes) from #3; {COUNTED} [provisional]", f"{READ} [provisional]", ANSWERED]
     assert _infos(pcap, two_pass=True) == [READ, ANSWERED, "noise (4 bytes)", COUNTED, READ, ANSWERED]
     _same_as_vw3_decode(pcap)
 
@@ -70,10 +71,14 @@ def test_a_written_damaged_stream_holds_only_the_records_that_are_no_frame(tmp_p
     one, two = _infos(pcap, two_pass=False), _infos(pcap, two_pass=True)
     held = [number for number, info in enumerate(one, 1) if info.endswith(("bytes continue)", "byte continues)"))]
     assert held == [1, 4, 6, 10, 13, 14, 16, 18]  # (noise, or a damaged frame: the next record may continue them)
-    # (every other record shows what -2 shows, provisional or not)
-    assert [info.removesuffix(" [provisional]") for number, info in enumerate(one, 1) if number not in held] == [
-        info for number, info in enumerate(two, 1) if number not in held]
-    _same_as_vw3_decode(pcap)
+    # (every other record shows what -2 shows, provisional or not, after what it decided for the records
+    # held before it: their items, `... from #N`, which -2 shows in those records; every held record's)
+    own = ["; ".join(part.replace(" [provisional]", "") for part in info.split("; ") if " from #" not in part)
+           for number, info in enumerate(one, 1) if number not in held]
+    assert own == [info for number, info in enumerate(two, 1) if number not in held]
+    assert set(held) == {int(number) for info in one for number in re.findall(r" from #(\d+)", info)}
+    # (its last record a request: one pass cannot know the capture ends there, test_lua_capture_end.py)
+    _same_as_vw3_decode(pcap, ignore=frozenset(["notes"]))
 
 
 @pytest.mark.parametrize("first", ["29460102", "0c0800001234bb74", "0c03c8"], ids=["scan", "fc8", "answer"])
@@ -85,7 +90,7 @@ def test_a_record_that_is_a_scanned_frame_settles_what_is_before_it(first: str, 
     pcap = _capture(tmp_path, [REQUEST, ANSWER, held, rtu("0C 46 0102 0304"), REQUEST, ANSWER])
     user = "12 User-defined function 70 request 4 bytes of data"
     assert _infos(pcap, two_pass=False) == [
-        f"{READ} [provisional]", f"{ANSWERED} [provisional]", f"({len(held)} bytes continue)", f"{user} [provisional]",
-        f"{READ} [provisional]", ANSWERED]
+        f"{READ} [provisional]", f"{ANSWERED} [provisional]", f"({len(held)} bytes continue)",
+        f"noise ({len(held)} bytes) from #3; {user} [provisional]", f"{READ} [provisional]", ANSWERED]
     assert _infos(pcap, two_pass=True) == [READ, ANSWERED, f"noise ({len(held)} bytes)", user, READ, ANSWERED]
     _same_as_vw3_decode(pcap)
