@@ -7313,8 +7313,7 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local PLC_LABELS, address_name, address_runs, concat = PLC_LABELS, address_name, address_runs, concat
 local consecutive, has_note, interpret, interpret_wide = consecutive, has_note, interpret, interpret_wide
-local ipairs, math, next, note, register_at, say, span_name = ipairs, math, next, note, register_at, say, span_name
-local table = table
+local ipairs, math, next, note, say, span_name, table = ipairs, math, next, note, say, span_name, table
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
@@ -7390,10 +7389,11 @@ local function track(seen, f, address, row, value, status, now, label)
 end
 
 local function remember_writes(seen, number, run, b)
-  if run.start == nil then return end
+  local start, k = run.start, run.first -- (register_at, written out: a register of a run in b)
+  if start == nil then return end
   for index = 0, run.count - 1 do
-    local address, value = register_at(run, b, index)
-    remember(seen, address, value, number, "written")
+    remember(seen, (start + index) % 0x10000, b[k] * 256 + b[k + 1], number, "written")
+    k = k + 2
   end
 end
 
@@ -8055,10 +8055,11 @@ local function observe(st, f, b)
 end
 
 -- Would observe decide nothing with a good frame of slave's function fn, an answer (answer true: no device
--- objects in it) or a request? For a slave met before (and judged, for an answer): what lane.counted
--- counts the frame in (the slave's judged table; true where its choice is final: observe counts nothing).
--- false when observe is to weigh the frame (a function that identifies a device, a slave not met or still
--- judged, an answer its device does not support). Changes nothing. (The quick lanes ask this instead.)
+-- objects in it) or a request? For a slave met before (and judged, for an answer): true where observe would
+-- change nothing (a final choice, or a settled slave: its counts decide nothing more), else the slave's judged
+-- table, which the lane that takes the frame counts it in as observe does (answers, frames). false when observe
+-- is to weigh the frame (a function that identifies a device, a slave not met or still judged, an answer its
+-- device does not support). Changes nothing. (The quick lanes ask this instead.)
 function lane.quiet(st, slave, fn, answer)
   if IDENTIFYING[fn] ~= nil then return false end
   local frozen = st.frozen
@@ -8067,16 +8068,10 @@ function lane.quiet(st, slave, fn, answer)
   if judged == nil then return false end
   local current = judged.choice
   if current ~= nil and current.final then return true end
-  if (current == nil or current.profile == FALLBACK) and not settled(judged) then return false end -- (open: provisional)
+  local done = judged.answers >= FIT_ANSWERS or judged.frames >= FIT_FRAMES -- (settled, written out)
+  if (current == nil or current.profile == FALLBACK) and not done then return false end -- (open: provisional)
   if answer and current ~= nil and unsupported(current, fn) then return false end
-  return judged
-end
-
--- Count the frame as observe does, once the lane takes it (judged: what lane.quiet returned).
-function lane.counted(judged, answer)
-  if judged == true then return end
-  if answer then judged.answers = judged.answers + 1 end
-  judged.frames = judged.frames + 1
+  return done or judged
 end
 
 -- A provisional frame kept, per slave until its choice, for the chosen device to annotate again
@@ -8852,7 +8847,7 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
     end
   end
   -- From here on the answer is taken: the same changes, in the same order, as the general path's.
-  if quiet then lane.counted(quiet, true) end
+  if quiet and quiet ~= true then quiet.answers, quiet.frames = quiet.answers + 1, quiet.frames + 1 end -- (lane.quiet)
   st.expect = nil -- (expect_after: an answer awaits nothing)
   local offset, item = lane.advance(st, n, time)
   -- (no record table for finish: the stream waits for no byte, and an answer awaits nothing)
@@ -8950,7 +8945,7 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
   end
   -- Taken: the same changes as the general path's (the stream, the count, profile auto's count, the frame
   -- decoded as its entry says, awaiting its answer alone in its record, packed by pack.settle).
-  if quiet then lane.counted(quiet, false) end
+  if quiet and quiet ~= true then quiet.frames = quiet.frames + 1 end -- (counted as observe does: lane.quiet)
   st.expect = slave * 256 + code -- (expect_after: a request's code is its function)
   local offset, count = lane.advance(st, n, time)
   -- The frame framing finds (the request's layout is the likeliest; its length and CRC checked when it
@@ -9072,7 +9067,7 @@ function lane.decode(st, bytes, n, time, number)
   local answer = st.pending ~= nil
   if lane.quick and st.open[1] == nil and st.listening == nil and takes_whole(st, n, slave)
       and (st.expect == slave * 256 + code) == answer then
-    local quiet = nil -- (what lane.counted counts the frame in; nil: profile auto is not in use for the slave)
+    local quiet = nil -- (what the lane counts the frame in; nil: profile auto is not in use for the slave)
     if config.auto[slave] then quiet = lane.quiet(st, slave, code, answer) end
     if quiet ~= false then
       local kept, info = (answer and lane.answer or lane.request)(st, bytes, n, time, number, slave, code, quiet)

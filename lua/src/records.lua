@@ -291,7 +291,7 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
     end
   end
   -- From here on the answer is taken: the same changes, in the same order, as the general path's.
-  if quiet then lane.counted(quiet, true) end
+  if quiet and quiet ~= true then quiet.answers, quiet.frames = quiet.answers + 1, quiet.frames + 1 end -- (lane.quiet)
   st.expect = nil -- (expect_after: an answer awaits nothing)
   local offset, item = lane.advance(st, n, time)
   -- (no record table for finish: the stream waits for no byte, and an answer awaits nothing)
@@ -389,7 +389,7 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
   end
   -- Taken: the same changes as the general path's (the stream, the count, profile auto's count, the frame
   -- decoded as its entry says, awaiting its answer alone in its record, packed by pack.settle).
-  if quiet then lane.counted(quiet, false) end
+  if quiet and quiet ~= true then quiet.frames = quiet.frames + 1 end -- (counted as observe does: lane.quiet)
   st.expect = slave * 256 + code -- (expect_after: a request's code is its function)
   local offset, count = lane.advance(st, n, time)
   -- The frame framing finds (the request's layout is the likeliest; its length and CRC checked when it
@@ -511,7 +511,7 @@ function lane.decode(st, bytes, n, time, number)
   local answer = st.pending ~= nil
   if lane.quick and st.open[1] == nil and st.listening == nil and takes_whole(st, n, slave)
       and (st.expect == slave * 256 + code) == answer then
-    local quiet = nil -- (what lane.counted counts the frame in; nil: profile auto is not in use for the slave)
+    local quiet = nil -- (what the lane counts the frame in; nil: profile auto is not in use for the slave)
     if config.auto[slave] then quiet = lane.quiet(st, slave, code, answer) end
     if quiet ~= false then
       local kept, info = (answer and lane.answer or lane.request)(st, bytes, n, time, number, slave, code, quiet)

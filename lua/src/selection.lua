@@ -191,10 +191,11 @@ local function observe(st, f, b)
 end
 
 -- Would observe decide nothing with a good frame of slave's function fn, an answer (answer true: no device
--- objects in it) or a request? For a slave met before (and judged, for an answer): what lane.counted
--- counts the frame in (the slave's judged table; true where its choice is final: observe counts nothing).
--- false when observe is to weigh the frame (a function that identifies a device, a slave not met or still
--- judged, an answer its device does not support). Changes nothing. (The quick lanes ask this instead.)
+-- objects in it) or a request? For a slave met before (and judged, for an answer): true where observe would
+-- change nothing (a final choice, or a settled slave: its counts decide nothing more), else the slave's judged
+-- table, which the lane that takes the frame counts it in as observe does (answers, frames). false when observe
+-- is to weigh the frame (a function that identifies a device, a slave not met or still judged, an answer its
+-- device does not support). Changes nothing. (The quick lanes ask this instead.)
 function lane.quiet(st, slave, fn, answer)
   if IDENTIFYING[fn] ~= nil then return false end
   local frozen = st.frozen
@@ -203,16 +204,10 @@ function lane.quiet(st, slave, fn, answer)
   if judged == nil then return false end
   local current = judged.choice
   if current ~= nil and current.final then return true end
-  if (current == nil or current.profile == FALLBACK) and not settled(judged) then return false end -- (open: provisional)
+  local done = judged.answers >= FIT_ANSWERS or judged.frames >= FIT_FRAMES -- (settled, written out)
+  if (current == nil or current.profile == FALLBACK) and not done then return false end -- (open: provisional)
   if answer and current ~= nil and unsupported(current, fn) then return false end
-  return judged
-end
-
--- Count the frame as observe does, once the lane takes it (judged: what lane.quiet returned).
-function lane.counted(judged, answer)
-  if judged == true then return end
-  if answer then judged.answers = judged.answers + 1 end
-  judged.frames = judged.frames + 1
+  return done or judged
 end
 
 -- A provisional frame kept, per slave until its choice, for the chosen device to annotate again
