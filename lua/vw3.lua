@@ -3424,7 +3424,7 @@ local function has_rare(f)
     f.exception_meaning or f.subfunction or f.subfunction_text or f.objects or f.ascii or f.raw or
     f.inferred or f.profile_choice or f.profile_said or f.provisional or f.paired_notes
 end
-DATA.pack = { encode = encode, put = put, expand = expand, has_rare = has_rare,
+DATA.pack = { encode = encode, put = put, expand = expand, has_rare = has_rare, time = 6,
   rare = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
     "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "ascii", "raw",
     "inferred", "profile_choice", "profile_said", "provisional", "paired_notes" } }
@@ -8500,6 +8500,12 @@ function pack.expand(p, st)
     reason = p[8], raw = p[9], count = p[10] }
 end
 
+-- The time of a record the quick lanes took (lane.again): its one frame's (packed, or awaiting its answer).
+function pack.record_time(st, record)
+  if type(record) == "number" then return st.flat[record + DATA.pack.time] end
+  return type(record) == "table" and record[1] ~= nil and pack.expand(record[1], st).time
+end
+
 -- After a record is shown on the first pass: pack the items taken since, but the request still
 -- awaiting its answer (pairing and the end of the capture change it; the display knows it as itself).
 function pack.settle(st)
@@ -9114,19 +9120,25 @@ function lane.again(st)
     if kept[number] == nil then records[number] = nil end
   end
   -- Each record decoded again makes its first decoding garbage, one for one: meanwhile the collector starts
-  -- its next cycle at once (the pause lua/src/crc.lua sets let that garbage grow the heap by half what stays).
+  -- its next cycle at once (the pause lua/src/crc.lua sets let that garbage grow the heap by half what stays),
+  -- from a heap without the first pass's garbage (a pause takes effect when a cycle ends).
   local paused, pause = pcall(collectgarbage, "setpause", 100)
+  collectgarbage("collect")
   -- The records in number order, the order of their first dissection (a first pass reads the capture in
   -- order): no list of that order kept a record.
-  local first, last = math.huge, 0
+  local first, last, times = math.huge, 0, again.times
   for number in pairs(kept) do
     if number < first then first = number end
     if number > last then last = number end
+    -- (its time over its first decoding, no table more: kept, or its quick lane frame's, read before any is packed)
+    local time = times[number]
+    if time == nil then time = pack.record_time(st, records[number]) or false end
+    records[number] = time
   end
   for number = first, last do
     local bytes = kept[number]
     if bytes ~= nil then
-      local time = again.times[number] or nil -- (false: a record without a time)
+      local time = records[number] or nil
       local ok, result = pcall(lane.decode, fresh, bytes, #bytes, time, number)
       if not ok then result = { length = #bytes, error = tostring(result) } end
       records[number] = result -- (over its first decoding, which is done with)
@@ -9757,7 +9769,8 @@ local UNMATCHED = say("unmatched", {}) -- (data/modbus.toml [texts])
 -- pinfo.abs_ts, a double near 1.7e9 s, is 238 ns coarse: a response time of 2.05 ms read 2.0 or 2.1 ms by
 -- chance. pinfo.rel_ts (from Wireshark's reference record, the capture's first) and delta_ts (from the record
 -- before) are small: their nanoseconds are exact. The clock is the capture's: a new one with each capture's
--- serial stream (`state`, made by proto.init); clock.times: each record's (false: none), by number.
+-- serial stream (`state`, made by proto.init); clock.times: by number (false: none), the times the usual case
+-- below does not give (the first record's, a new reference's, ...) and those a stand-in reads again.
 local NS = 1e9
 local clock = {}
 local function capture_clock(abs)
@@ -9781,17 +9794,18 @@ local function exact_ns(c, seconds)
   return ns
 end
 
+-- The clock record_ns reads the usual record's time from, in upvalues (fewer look-ups a record): the capture's
+-- serial stream, the reference record's time (abs_ts - rel_ts) and that in ns, set where the clock learns its
+-- reference (other_record_ns); the last usual record's number and time (chained_ns: the record before).
+local usual_capture, usual_reference, usual_reference_ns, usual_number, usual_ns = nil, nil, nil, nil, nil
+
 -- The record's time from the one before (delta_ts) where that one's is known, else from abs_ts.
 local function chained_ns(c, pinfo, number, abs)
   local before, delta = c.times[number - 1], pinfo.delta_ts
+  if usual_capture == state and usual_number == number - 1 then before = usual_ns end -- (record_ns's last)
   if before and delta ~= nil and math.abs(delta) < 4e6 then return before + exact_ns(c, delta) end
   return coarse_ns(c, abs)
 end
-
--- The clock record_ns reads the usual record's time from, in upvalues (fewer look-ups a record): the capture's
--- serial stream, the reference record's time (abs_ts - rel_ts) and that in ns, the clock's times. Set
--- where the clock learns its reference (other_record_ns).
-local usual_capture, usual_reference, usual_reference_ns, usual_times = nil, nil, nil, nil
 
 -- A record's time as record_ns reads it where it is not the usual case below: the first record, a new
 -- reference, an RTAC record, one at the epoch, a stand-in. (abs: pinfo.abs_ts, read already)
@@ -9815,7 +9829,7 @@ local function other_record_ns(pinfo, number, abs)
       reference = rel ~= nil and abs - rel -- (the reference record's time; 0: it has none)
       if reference and math.abs(reference) >= 1 then
         c.reference, c.reference_ns = reference, ns - exact_ns(c, rel)
-        usual_capture, usual_reference, usual_reference_ns, usual_times = state, reference, c.reference_ns, times
+        usual_capture, usual_reference, usual_reference_ns = state, reference, c.reference_ns
       end
     end
   end
@@ -9825,7 +9839,7 @@ end
 
 -- A record's time as vw3-decode reads it, in ns (nil: none): the RTAC's own timestamp for RTAC serial
 -- records (when the device saw the bytes: lane.rtac_ns), none for records at the epoch (vw3-decode -w
--- writes those for untimed input), the record's time otherwise. Read once a record (kept in clock.times).
+-- writes those for untimed input), the record's time otherwise. Read once a record.
 local function record_ns(pinfo, number)
   local abs = pinfo.abs_ts
   -- Nearly every record: timed, of the capture whose reference record's time the clock knows, no RTAC
@@ -9838,7 +9852,7 @@ local function record_ns(pinfo, number)
   if not (drift and drift < 1e-6 and drift > -1e-6) then return other_record_ns(pinfo, number, abs) end
   local from = rel * NS + 0.5
   local ns = usual_reference_ns + (from - from % 1)
-  usual_times[number] = ns
+  usual_number, usual_ns = number, ns
   return ns
 end
 
@@ -10305,18 +10319,22 @@ local function dissect_now(st, tvb, pinfo, number)
     newest_record = number
     if time ~= nil then recorded_until = time end
   end
+  local again = nil
   if config.default == AUTO and not state.finished then
     -- Kept for lane.again: the whole capture decoded again with its choices, once they are known (not
     -- after the first pass is over: a live capture's later records are never decoded again). Their bytes
-    -- by number; their times are the clock's (record_ns keeps every record's, `false` for none).
-    local again = st.again
+    -- by number; their times (false: none) but a quick lane's record's (its frame's: pack.record_time).
+    again = st.again
     if again == nil then
-      again = { bytes = {}, times = clock.times }
+      again = { bytes = {}, times = {} }
       st.again = again
     end
     again.bytes[number] = bytes
   end
-  return lane.decode(st, bytes, n, time, number)
+  if st.sample then clock.times[number] = time or false end -- (kept for a stand-in: dissector.lua decode_again)
+  local record, taken, info = lane.decode(st, bytes, n, time, number)
+  if again ~= nil and info == nil then again.times[number] = time or false end
+  return record, taken, info
 end
 M.dissect_now, M.finish_all, M.record_ns, M.show_record = dissect_now, finish_all, record_ns, show_record
 end

@@ -99,6 +99,8 @@ def render_pack() -> list[str]:
     # (one expression: no loop a frame; a rare key is never false: its truth is the test)
     tests = ["f.registers and (f.registers.status or f.registers.plain)", *(f"f.{key}" for key in RARE)]
     lines += ["local function has_rare(f)", *_wrapped("  return ", tests, " or", ""), "end"]
-    lines += ["DATA.pack = { encode = encode, put = put, expand = expand, has_rare = has_rare,",
+    # (the slot of a frame's time, after its first: pack.record_time)
+    time = next(at for at, (_, slot) in enumerate(SLOTS, 1) if "time?" in slot)
+    lines += [f"DATA.pack = {{ encode = encode, put = put, expand = expand, has_rare = has_rare, time = {time},",
               *_wrapped("  rare = { ", [f'"{key}"' for key in RARE], ",", " } }"), "end"]
     return lines

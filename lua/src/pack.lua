@@ -97,6 +97,12 @@ function pack.expand(p, st)
     reason = p[8], raw = p[9], count = p[10] }
 end
 
+-- The time of a record the quick lanes took (lane.again): its one frame's (packed, or awaiting its answer).
+function pack.record_time(st, record)
+  if type(record) == "number" then return st.flat[record + DATA.pack.time] end
+  return type(record) == "table" and record[1] ~= nil and pack.expand(record[1], st).time
+end
+
 -- After a record is shown on the first pass: pack the items taken since, but the request still
 -- awaiting its answer (pairing and the end of the capture change it; the display knows it as itself).
 function pack.settle(st)

@@ -558,19 +558,25 @@ function lane.again(st)
     if kept[number] == nil then records[number] = nil end
   end
   -- Each record decoded again makes its first decoding garbage, one for one: meanwhile the collector starts
-  -- its next cycle at once (the pause lua/src/crc.lua sets let that garbage grow the heap by half what stays).
+  -- its next cycle at once (the pause lua/src/crc.lua sets let that garbage grow the heap by half what stays),
+  -- from a heap without the first pass's garbage (a pause takes effect when a cycle ends).
   local paused, pause = pcall(collectgarbage, "setpause", 100)
+  collectgarbage("collect")
   -- The records in number order, the order of their first dissection (a first pass reads the capture in
   -- order): no list of that order kept a record.
-  local first, last = math.huge, 0
+  local first, last, times = math.huge, 0, again.times
   for number in pairs(kept) do
     if number < first then first = number end
     if number > last then last = number end
+    -- (its time over its first decoding, no table more: kept, or its quick lane frame's, read before any is packed)
+    local time = times[number]
+    if time == nil then time = pack.record_time(st, records[number]) or false end
+    records[number] = time
   end
   for number = first, last do
     local bytes = kept[number]
     if bytes ~= nil then
-      local time = again.times[number] or nil -- (false: a record without a time)
+      local time = records[number] or nil
       local ok, result = pcall(lane.decode, fresh, bytes, #bytes, time, number)
       if not ok then result = { length = #bytes, error = tostring(result) } end
       records[number] = result -- (over its first decoding, which is done with)
