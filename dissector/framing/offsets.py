@@ -31,6 +31,14 @@ class Offsets:
     def __contains__(self, offset: int) -> bool:
         return offset in self._members
 
+    def __eq__(self, other: object) -> bool:
+        return isinstance(other, Offsets) and self._ordered == other._ordered
+
+    __hash__ = None  # type: ignore[assignment]  # (mutable, as a set)
+
+    def __repr__(self) -> str:
+        return f"Offsets({self._ordered})"
+
     def __bool__(self) -> bool:
         return bool(self._ordered)
 

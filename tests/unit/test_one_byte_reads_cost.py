@@ -25,6 +25,9 @@ def test_offsets_answer_as_a_sorted_set() -> None:
     offsets = Offsets()
     offsets.update([10, 4, 7, 7, 20])
     assert list(offsets) == [4, 7, 10, 20] and 7 in offsets and 8 not in offsets
+    again = Offsets()
+    again.update([4, 20, 10, 7])
+    assert offsets == again and offsets != Offsets() and repr(again) == "Offsets([4, 7, 10, 20])"
     assert offsets.first_after(4, 9) == 7 and offsets.first_after(7, 9) is None and offsets.first_after(0, 4) == 4
     assert offsets.within(7, 20) == [7, 10] and offsets.within(21, 30) == []
     offsets.drop_below(8)
