@@ -13,7 +13,7 @@ import pytest
 
 from helpers import rtu
 from lua_compare import compare
-from lua_harness import lua_errors, lua_items, python_items, run_tshark, write_pcap
+from lua_harness import assert_as_vw3_decode_in_one_and_two_passes, lua_errors, lua_items, python_items, run_tshark, write_pcap
 
 pytestmark = pytest.mark.integration
 LATER = frozenset(["response_frame", "unanswered"])  # (what one pass cannot know when it shows a request)
@@ -40,12 +40,7 @@ def test_an_answer_with_a_bad_crc_in_its_own_record(tmp_path: Path) -> None:
         f"{READ} [provisional]", f"{ANSWERED} [provisional] BAD CRC", f"{READ} [provisional]",
         f"{ANSWERED} [provisional]", f"{READ} [provisional]", ANSWERED]
     assert _infos(pcap, two_pass=True) == [READ, f"{ANSWERED} BAD CRC", READ, ANSWERED, READ, ANSWERED]
-    one, _, _ = lua_items(pcap, two_pass=False)
-    differences = compare(python_items(pcap, one_pass=True), one, ignore=LATER)
-    assert not differences, "\n".join(differences[:40])
-    two, _, _ = lua_items(pcap)
-    differences = compare(python_items(pcap), two)
-    assert not differences, "\n".join(differences[:40])
+    assert_as_vw3_decode_in_one_and_two_passes(pcap, LATER)
 
 
 def test_an_answer_with_a_bad_crc_after_its_request_in_one_record(tmp_path: Path) -> None:
@@ -55,9 +50,4 @@ def test_an_answer_with_a_bad_crc_after_its_request_in_one_record(tmp_path: Path
         f"{READ} [provisional]; (11 bytes continue)", f"{ANSWERED} [provisional] BAD CRC from #1; {READ} [provisional]",
         f"{ANSWERED} [provisional]", f"{READ} [provisional]", ANSWERED]
     assert _infos(pcap, two_pass=True) == [f"{READ}; {ANSWERED} BAD CRC", READ, ANSWERED, READ, ANSWERED]
-    one, _, _ = lua_items(pcap, two_pass=False)
-    differences = compare(python_items(pcap, one_pass=True), one, ignore=LATER)
-    assert not differences, "\n".join(differences[:40])
-    two, _, _ = lua_items(pcap)
-    differences = compare(python_items(pcap), two)
-    assert not differences, "\n".join(differences[:40])
+    assert_as_vw3_decode_in_one_and_two_passes(pcap, LATER)

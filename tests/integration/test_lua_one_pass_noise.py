@@ -14,7 +14,7 @@ import pytest
 
 from helpers import rtu
 from lua_compare import compare, lua_kind, lua_shown
-from lua_harness import ROOT, lua_errors, lua_items, python_items, run_tshark, write_pcap
+from lua_harness import assert_as_vw3_decode_in_one_and_two_passes, ROOT, lua_errors, lua_items, python_items, run_tshark, write_pcap
 
 pytestmark = pytest.mark.integration
 # (what one pass cannot know when it shows a request: the answer after it, test_lua_parity_auto.py)
@@ -44,12 +44,7 @@ def _items(pcap: Path, two_pass: bool) -> list[tuple[int, str, int, int, int]]:
 
 
 def _same_as_vw3_decode(pcap: Path) -> None:
-    one, _, _ = lua_items(pcap, two_pass=False)
-    differences = compare(python_items(pcap, one_pass=True), one, ignore=LATER)
-    assert not differences, "\n".join(differences[:40])
-    two, _, _ = lua_items(pcap)
-    differences = compare(python_items(pcap), two)
-    assert not differences, "\n".join(differences[:40])
+    assert_as_vw3_decode_in_one_and_two_passes(pcap, LATER)
 
 
 def test_noise_between_records_is_shown_in_the_record_that_decides_it(tmp_path: Path) -> None:

@@ -278,3 +278,16 @@ def _record_of(starts: list[int], offset: int) -> int:
         else:
             high = middle - 1
     return low
+
+
+def assert_as_vw3_decode_in_one_and_two_passes(pcap: Path, later: frozenset[str]) -> None:
+    """The plugin's one pass shows what `vw3-decode -` shows (but for `later`: what one pass cannot know when it
+    shows an item), and its two passes what `vw3-decode FILE` shows."""
+    from lua_compare import compare  # (lua_compare imports this module)
+
+    one, _, _ = lua_items(pcap, two_pass=False)
+    differences = compare(python_items(pcap, one_pass=True), one, ignore=later)
+    assert not differences, "\n".join(differences[:40])
+    two, _, _ = lua_items(pcap)
+    differences = compare(python_items(pcap), two)
+    assert not differences, "\n".join(differences[:40])
