@@ -8,12 +8,11 @@ from inside a read, alone in a record, made the noise after it a damaged request
 chunk by chunk or by the Python stages byte for byte alike."""
 from __future__ import annotations
 
-import struct
 from pathlib import Path
 
 import pytest
 
-from helpers import run_cli, use_engine
+from helpers import pcapng_packets, run_cli, use_engine
 from dissector.model import Stamp
 from dissector.render.pcapngwriter import PcapngWriter
 from dissector.render.pcapwriter import PcapWriter
@@ -82,22 +81,7 @@ def capture(path: Path, seed: int) -> Path:
 
 def pcapng_records(path: Path) -> list[tuple[int, bytes, list[str]]]:
     """(microseconds from T0, bytes, comments) of each packet block of the copy (little-endian, in us)."""
-    data, position, found = path.read_bytes(), 0, []
-    while position < len(data):
-        kind, total = struct.unpack_from("<II", data, position)
-        if kind == 6:
-            _interface, high, low, captured, _original = struct.unpack_from("<IIIII", data, position + 8)
-            body = position + 28
-            options, comments = body + captured + (-captured % 4), []
-            while options < position + total - 4:
-                code, length = struct.unpack_from("<HH", data, options)
-                if code == 0:
-                    break
-                comments.append(data[options + 4 : options + 4 + length].decode())
-                options += 4 + length + (-length % 4)
-            found.append(((high << 32 | low) - T0, data[body : body + captured], comments))
-        position += total
-    return found
+    return pcapng_packets(path, T0)
 
 
 def written(path: Path) -> list[tuple[int, bytes]]:

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import io
+import struct
 from pathlib import Path
 
 from dissector.app.cli import Environment, run
@@ -131,3 +132,23 @@ def ascii_items(data: bytes, size: int | None = None) -> list[tuple[str, int, by
         out += framer.feed(Chunk(chunk))
     out += framer.finish()
     return [(type(item).__name__, item.offset, item.raw, getattr(item, "warnings", [])) for item in out]
+
+
+def pcapng_packets(path: Path, origin: int) -> list[tuple[int, bytes, list[str]]]:
+    """(microseconds from `origin`, bytes, comments) of each packet block of a little-endian pcapng in us."""
+    data, position, found = path.read_bytes(), 0, []
+    while position < len(data):
+        kind, total = struct.unpack_from("<II", data, position)
+        if kind == 6:
+            _interface, high, low, captured, _original = struct.unpack_from("<IIIII", data, position + 8)
+            body = position + 28
+            options, comments = body + captured + (-captured % 4), []
+            while options < position + total - 4:
+                code, length = struct.unpack_from("<HH", data, options)
+                if code == 0:
+                    break
+                comments.append(data[options + 4 : options + 4 + length].decode())
+                options += 4 + length + (-length % 4)
+            found.append(((high << 32 | low) - origin, data[body : body + captured], comments))
+        position += total
+    return found

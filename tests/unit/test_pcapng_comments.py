@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import run_cli, use_engine
+from helpers import pcapng_packets, run_cli, use_engine
 from dissector.sources.trail import own_comment
 
 REQUEST = bytes.fromhex("0C0320D000030EEF")
@@ -45,22 +45,7 @@ def pcapng(packets: list[tuple[int, bytes, list[str]]]) -> bytes:
 
 def records(path: Path) -> list[tuple[int, bytes, list[str]]]:
     """(microseconds from T0, bytes, comments) of each packet block of a little-endian pcapng."""
-    data, position, found = path.read_bytes(), 0, []
-    while position < len(data):
-        kind, total = struct.unpack_from("<II", data, position)
-        if kind == 6:
-            _interface, high, low, captured, _original = struct.unpack_from("<IIIII", data, position + 8)
-            body = position + 28
-            options, comments = body + captured + (-captured % 4), []
-            while options < position + total - 4:
-                code, length = struct.unpack_from("<HH", data, options)
-                if code == 0:
-                    break
-                comments.append(data[options + 4 : options + 4 + length].decode())
-                options += 4 + length + (-length % 4)
-            found.append(((high << 32 | low) - T0, data[body : body + captured], comments))
-        position += total
-    return found
+    return pcapng_packets(path, T0)
 
 
 COMMENTED = [(0, REQUEST, ["poll \x1b[31m of 12"]), (10_000, ANSWER, ["answer", "again"]),
