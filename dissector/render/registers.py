@@ -7,12 +7,17 @@ so `-T registers` cannot disagree with `--json` (and `--parquet`'s registers tab
   (`ok`, `protected`, `non-existent`, `ambiguous`; empty without a profile);
 - `write`: a value a request writes (FC5/6/15/16, the write half of FC23; a broadcast too);
 - `echo`: the value a write's answer repeats (FC5, FC6): the write confirmed;
+- a Mask Write (FC22, [confirm] "mask") is one `write` row of its request and one `echo` row of its
+  answer, at the register's address: `text` shows its masks as the summary does (`AND 0x00F2 OR 0x0025`);
+  the register then holds (its value before AND and_mask) OR (or_mask AND NOT and_mask) (Application
+  Protocol 6.16), so `value` is or_mask where and_mask is 0 and empty elsewhere (the value before is
+  not in the frame; the text says so rather than guess);
 - `exception`: a register an exception tells the status of (ATV71 exception 02 to a read whose every
   parameter is non-existent or protected, p.38), `value` empty.
 `write` says what became of a written value (the codes of data/modbus.toml [confirm] write, and it says
 how each is confirmed), as `--stats` counts it (render/history.py): `confirmed` (a normal answer; for a
 code confirmed by its echo, the echo repeats this value: the echo row itself is `confirmed`), `differs`
-(the echo answers another value: the echo row's is the one confirmed), `refused` (an exception answered,
+(the echo answers another value, or FC22 other masks: the echo row's is the one confirmed), `refused` (an exception answered,
 its code in `exception_code`), `unanswered`, `broadcast` (no answer comes to a broadcast) or `unknown`
 (the capture ends before any answer, or the request or its answer failed its check: --stats takes it as
 neither confirmed nor refused); empty on a read. `exception_code` is also an exception row's own.
@@ -36,6 +41,9 @@ COLUMNS = (
 # Keys a row takes as they are from the register (or bit) object of the NDJSON record.
 REGISTER_KEYS = ("address", "label", "code", "name", "value", "scaled", "unit", "status", "text")
 ECHOES = confirmed_by(Confirm.ECHO)  # whose answer repeats the values written (FC5, FC6): `echo` rows
+MASKS = confirmed_by(Confirm.MASK)  # whose answer repeats the masks written (FC22): `echo` rows too
+MASK_FIELDS = ("address", "and_mask", "or_mask")
+PRIOR_UNKNOWN = "the result depends on the value before"  # (a mask row's text where and_mask keeps bits)
 
 
 def access_of(record: dict[str, Any]) -> str:
@@ -44,7 +52,7 @@ def access_of(record: dict[str, Any]) -> str:
         return "write"
     if kind == "exception":
         return "exception"
-    return "echo" if record["function"] in ECHOES else "read"
+    return "echo" if record["function"] in ECHOES or record["function"] in MASKS else "read"
 
 
 def _echoed(frame: Frame) -> dict[int | None, Any]:
@@ -63,7 +71,8 @@ def write_outcome(record: dict[str, Any], item: Item | None) -> tuple[str | None
     if how is None:
         return None, None, None
     if kind == "response":  # an echo confirms its own values (--stats CONFIRM)
-        return ("confirmed" if record["crc_ok"] else "unknown") if how is Confirm.ECHO else None, None, None
+        echoes = how is Confirm.ECHO or how is Confirm.MASK
+        return ("confirmed" if record["crc_ok"] else "unknown") if echoes else None, None, None
     if record["broadcast"]:
         return "broadcast", None, None
     if record["unanswered"]:
@@ -76,7 +85,30 @@ def write_outcome(record: dict[str, Any], item: Item | None) -> tuple[str | None
         return "unknown", None, None  # (--stats takes neither as a refusal or a confirmation)
     if answer.kind is Kind.EXCEPTION:
         return "refused", answer.exception_code, None
+    if how is Confirm.MASK:  # (the echo's masks: another mask than asked is not the write confirmed)
+        masks = _masks(answer.fields)
+        return ("confirmed" if masks == _masks(record.get("fields") or item.fields) else "differs"), None, None
     return "confirmed", None, _echoed(answer) if how is Confirm.ECHO else None
+
+
+def _masks(fields: Any) -> tuple[int, int, int] | None:
+    """(address, and_mask, or_mask) of an FC22 frame's fields (a Frame's or a record's), None: malformed."""
+    return None if fields is None else tuple(fields[name] for name in MASK_FIELDS)  # type: ignore[return-value]
+
+
+def _mask_element(record: dict[str, Any], item: Item | None) -> dict[str, Any] | None:
+    """The register element of an FC22 request or echo (the module's doc), None: malformed or not one."""
+    if record.get("function") not in MASKS or record["kind"] == "exception":
+        return None
+    fields = record.get("fields")
+    masks = _masks(fields if fields is not None else item.fields if isinstance(item, Frame) else None)
+    if masks is None:
+        return None
+    address, and_mask, or_mask = masks
+    text = f"AND 0x{and_mask:04X} OR 0x{or_mask:04X}"  # (the summary's, describe.TEXT_FORMS "mask")
+    known = and_mask == 0  # (every bit from or_mask: the value before does not matter)
+    return {"address": address, "label": record.get("span_label"), "value": or_mask if known else None,
+            "text": text if known else f"{text}: {PRIOR_UNKNOWN}", "words": 1}
 
 
 def register_rows(record: dict[str, Any], item: Item | None = None) -> Iterator[dict[str, Any]]:
@@ -84,7 +116,10 @@ def register_rows(record: dict[str, Any], item: Item | None = None) -> Iterator[
     (the record's epoch seconds are the caller's to show); `item`: the record's frame (write_outcome)."""
     elements = (record.get("registers") or []) + (record.get("bits") or [])
     if not elements:
-        return
+        mask = _mask_element(record, item)
+        if mask is None:
+            return
+        elements = [mask]  # (its `words`: 1, a 16-bit register, for --parquet)
     write, code, echoed = write_outcome(record, item)
     head = {
         "frame": record["frame"], "slave": record["slave"], "function": record["function"],
@@ -94,6 +129,8 @@ def register_rows(record: dict[str, Any], item: Item | None = None) -> Iterator[
         row = dict(head)
         for key in REGISTER_KEYS:
             row[key] = element.get(key)
+        if "words" in element and not record.get("registers"):
+            row["words"] = element["words"]
         if echoed is not None and echoed.get(row["address"], None) != row["value"]:
             row["write"] = "differs"
         yield row
