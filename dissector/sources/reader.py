@@ -23,6 +23,7 @@ from typing import BinaryIO
 
 from dissector.protocol.ascii import MODE_REACH, MODE_SAMPLE, sample_mode  # (MODE_SAMPLE: codegen's)
 from dissector.sources.common import Input, SourceError, WarningLog
+from dissector.sources.compressed import HEADER_BYTES, Decompressed, compression
 from dissector.sources.dumps import dump_tool, read_dump
 from dissector.sources.encoding import Encoding, decoded, marked, text_input
 from dissector.sources.hexdump import CONTROL, characters, looks_like_hexdump, read_hexdump
@@ -45,8 +46,6 @@ SNIFF_BYTES = 512  # enough to see a magic number or a few text lines
 SNIFF_LINES = 4  # a text sample with this many lines is enough to judge
 SNIFF_COMMENTS = 65536  # but a hex dump's header of comments is read to its first data line, this far
 MIN_CHUNK = 256
-
-_GZIP = b"\x1f\x8b"
 
 Reader = Callable[[Input, WarningLog, int], Iterator[Chunk]]
 
@@ -107,8 +106,6 @@ def detect_format(sample: bytes, complete: bool) -> tuple[str, str | None]:
         return "pcap", None
     if is_pcapng(sample):
         return "pcapng", None
-    if sample.startswith(_GZIP):
-        raise SourceError("compressed input (gzip): decompress it first")
     if not _is_text(sample):
         return "raw", None
     text = characters(sample, complete)
@@ -290,11 +287,17 @@ def _start(
     closer: Callable[[], None],
 ) -> Source:
     log = WarningLog()
-    raw_input = Input(stream, name)
-    try:
-        sample, complete = _sniff(raw_input)
-    except OSError as error:
-        raise SourceError(f"{name}: cannot read: {error.strerror or error}") from None
+    sample, complete = _sniff_or_fail(stream, name)
+    while len(sample) < HEADER_BYTES and not complete:  # (a pipe may give a header's first bytes alone)
+        part = Input(stream, name).read_some(HEADER_BYTES)
+        sample, complete = sample + part, not part
+    kind = compression(sample, name) if fmt != "raw" else None  # (--format raw: the line's bytes, as they are)
+    if kind is not None:
+        stream = Decompressed(kind, sample, stream, name, log)
+        sample, complete = _sniff_or_fail(stream, name)
+        inner = compression(sample, name)
+        if inner is not None:
+            raise SourceError(f"{name}: compressed twice ({kind}, then {inner}): decompress it first")
     warning = None
     encoding = None
     if fmt is None:
@@ -323,6 +326,13 @@ def _start(
     source = Source(chunks, head, format, mode, name, log, closer)
     source.streaming = not _regular(stream)
     return source
+
+
+def _sniff_or_fail(stream: BinaryIO, name: str) -> tuple[bytes, bool]:
+    try:
+        return _sniff(Input(stream, name))
+    except OSError as error:
+        raise SourceError(f"{name}: cannot read: {error.strerror or error}") from None
 
 
 def _regular(stream: BinaryIO) -> bool:

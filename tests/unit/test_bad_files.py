@@ -118,18 +118,14 @@ def test_empty_file_is_no_frames(tmp_path: Path) -> None:
         (pcap([REQUEST], linktype=1), None,
          "linktype 1 (Ethernet) carries no serial bytes; supported: 147 (USER0) and 250 (RTAC serial)"),
         (pcap([REQUEST]), "pcapng", "not a pcapng file (no section header block)"),
-        (b"\x1f\x8b\x08\x00rest", None, "compressed input (gzip): decompress it first"),
+        (b"\x28\xb5\x2f\xfdrest", None, "compressed input (zstd): decompress it first (`zstd -d FILE`)"),
     ],
 )
 def test_unreadable_captures(tmp_path: Path, content: bytes, fmt: str | None, message: str) -> None:
     path = tmp_path / "capture"
     path.write_bytes(content)
     status, out, err = cli(str(path), *(["--format", fmt] if fmt else []))
-    assert (status, out) == (2, [])
-    if message.startswith("compressed"):
-        assert err == [f"{PROG}{message}"]
-    else:
-        assert err == [f"{PROG}{path}: {message}"]
+    assert (status, out, err) == (2, [], [f"{PROG}{path}: {message}"])
 
 
 def test_hex_dump_with_a_timestamp_no_float_holds(tmp_path: Path) -> None:
