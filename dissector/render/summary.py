@@ -4,6 +4,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from dissector.model import Frame, Item, Kind, Noise
+from dissector.protocol.rules import TEXTS
 from dissector.render.describe import count_text, info_text
 
 if TYPE_CHECKING:
@@ -59,6 +60,14 @@ NOTES_BUDGET = 240  # characters of notes (and of warnings) a summary line shows
 # (-V and JSON have them all)
 
 
+# The start of the warning of slave 0's answer after a broadcast (pairing.py), which names the broadcast.
+_BROADCAST_ANSWERED = TEXTS["broadcast_answered"].partition("{")[0]
+
+
+def _answers_broadcast(frame: Frame) -> bool:
+    return any(warning.startswith(_BROADCAST_ANSWERED) for warning in frame.warnings)
+
+
 def tail_parts(frame: Frame) -> list[tuple[str, str]]:
     """Pairing and findings appended to the info column, as (text, style name) pieces.
 
@@ -69,7 +78,7 @@ def tail_parts(frame: Frame) -> list[tuple[str, str]]:
     if request is not None:
         rt = frame.response_time
         parts.append((f"[#{request.number}" + (f", {rt * 1000:.1f} ms]" if rt is not None else "]"), "vw3.pairing"))
-    elif frame.kind is not Kind.REQUEST:
+    elif frame.kind is not Kind.REQUEST and not _answers_broadcast(frame):  # (its warning names the request)
         parts.append(("[no request]", "vw3.pairing"))
     if frame.broadcast:
         parts.append(("[broadcast]", "vw3.pairing"))
