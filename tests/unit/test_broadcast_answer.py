@@ -42,21 +42,21 @@ CASES = {
     "answer to a broadcast": (
         WRITE + WRITTEN + rtu("01 03 0000 0001") + rtu("01 03 02 0005"),
         ["1 - 0 request Write Multiple Registers 9001: 9001=10 [broadcast] CRC ok",
-         f"2 - 0 response Write Multiple Registers 9001 written [no request] [warning: {AFTER}] CRC ok",
+         f"2 - 0 response Write Multiple Registers 9001 written [warning: {AFTER}] CRC ok",
          "3 - 1 request Read Holding Registers 0 CRC ok",
          "4 - 1 response Read Holding Registers 0: 0=5 [#3] CRC ok"],
     ),
     "exception to a broadcast": (
         WRITE + REFUSED,
         ["1 - 0 request Write Multiple Registers 9001: 9001=10 [broadcast] CRC ok",
-         f"2 - 0 exception Write Multiple Registers: exception 2 (Illegal Data Address) [no request] [warning: {AFTER}] "
+         f"2 - 0 exception Write Multiple Registers: exception 2 (Illegal Data Address) [warning: {AFTER}] "
          "CRC ok"],
     ),
     "two answers to a broadcast": (
         WRITE + WRITTEN + WRITTEN,
         ["1 - 0 request Write Multiple Registers 9001: 9001=10 [broadcast] CRC ok",
-         f"2 - 0 response Write Multiple Registers 9001 written [no request] [warning: {AFTER}] CRC ok",
-         f"3 - 0 response Write Multiple Registers 9001 written [no request] [warning: {AFTER}] CRC ok"],
+         f"2 - 0 response Write Multiple Registers 9001 written [warning: {AFTER}] CRC ok",
+         f"3 - 0 response Write Multiple Registers 9001 written [warning: {AFTER}] CRC ok"],
     ),
     "slave 0 answering with no broadcast before": (
         rtu("01 03 0000 0001") + rtu("01 03 02 0005") + WRITTEN,
