@@ -4114,6 +4114,12 @@ function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_te
     [43] = { request = BY_NAME.mei, response = BY_NAME.mei },
   }
 end
+DATA.info_naming = {
+  [6] = {
+    ["request"] = true,
+    ["response"] = true,
+  },
+}
 DATA.field_places = {
   read_request = { start = { at = 2, size = 2 }, quantity = { at = 4, size = 2 } },
   read_bits_response = { byte_count = { at = 2, size = 1 }, status = { at = 3 } },
@@ -9156,22 +9162,8 @@ function lane.again(st)
   for key in pairs(st) do st[key] = nil end
   for key, value in pairs(fresh) do st[key] = value end
 end
-M.dissect_record, M.finish, M.finish_safely = dissect_record, finish, finish_safely
-end
-
--- ---- vw3.api: lua/src/api.lua ----
-package.preload["vw3.api"] = function(...)
--- vw3.api: the pure part's entry points (tests load vw3.lua outside Wireshark).
--- Mirrors no Python module.
--- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.api"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local configure, dissect_record, finish, new_state, pack = configure, dissect_record, finish, new_state, pack
-
-M.vw3 = {
-  new_state = new_state, dissect_record = dissect_record, finish = finish, settle = pack.settle,
-  configure = configure,
-}
+M.dissect_record, M.finish = dissect_record, finish -- (the pure part's entry points: main.lua)
+M.finish_safely = finish_safely
 end
 
 -- ---- vw3.fields: lua/src/fields.lua ----
@@ -9298,8 +9290,8 @@ local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS = DATA, DIAGNOSTICS, EXCEPTION, FU
 local NO_INTERPRETATION, PARAMETER_FIELDS, REQUEST, concat = NO_INTERPRETATION, PARAMETER_FIELDS, REQUEST, concat
 local describe, device_of, ex, exception_name, floor = describe, device_of, ex, exception_name, floor
 local format, function_name, hex_pairs, ipairs, made_once = format, function_name, hex_pairs, ipairs, made_once
-local math, pairs, pf, python_repr, string, table, tostring = math, pairs, pf, python_repr, string, table, tostring
-local type, u16, words_at = type, u16, words_at
+local math, pf, python_repr, string, table, tostring, u16 = math, pf, python_repr, string, table, tostring, u16
+local words_at = words_at
 
 -- `1 byte`, `2 bytes`: a count and its noun, singular for one (describe.count_text).
 local function count_text(count, noun)
@@ -9592,16 +9584,6 @@ local MEI_TYPES, DEVICE_ID_CODES = DATA.fields.names.mei_types, DATA.fields.name
 local RUN_INDICATOR = DATA.names.run_indicator
 local BY_NAME = {}
 
--- python_repr of a device's text, without its walk character by character where the text is printable
--- ASCII with no backslash and not both quotes (Python's repr then only puts it in quotes).
-local function repr_text(text)
-  if not text:find("[^ -~]") and not text:find("\\", 1, true) then
-    if not text:find("'", 1, true) then return "'" .. text .. "'" end
-    if not text:find('"', 1, true) then return '"' .. text .. '"' end
-  end
-  return python_repr(text)
-end
-
 -- describe._mei: `Read Device Identification, basic, from object 0`; an answer its objects' values (a
 -- revision the profile decoded as such: `V2.1`), another MEI type its name.
 function BY_NAME.mei(f, b, base)
@@ -9629,7 +9611,7 @@ function BY_NAME.report_server_id(f, b, base)
   if b[base + 2] < 2 then return "server id " .. DECIMAL[b[base + 3]] end -- (byte count 1: the id alone)
   local count, run = b[base + 2] - 2, b[base + 4]
   local text = count > 0 and printable(b, base + 5, base + 4 + count)
-  local data = text and repr_text(text) or count_text(count, "byte")
+  local data = text and python_repr(text) or count_text(count, "byte")
   return "server id " .. DECIMAL[b[base + 3]] .. ", run " .. (RUN_INDICATOR[run] or DECIMAL[run]) .. ", " .. data
 end
 
@@ -9687,18 +9669,8 @@ end
 local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, span_text, BY_NAME)
 
 -- NAMING[fn][kind]: the forms that name a register as the frame's device does (a `single` step): their
--- text needs the device (summary's st or device).
-local NAMING = {}
-for kind, forms in pairs(INFO.forms) do
-  for code, form in pairs(forms) do
-    for _, step in ipairs(type(INFO.steps[form]) == "table" and INFO.steps[form] or NO_INTERPRETATION) do
-      if type(step) == "table" and step[1] == "single" then
-        NAMING[code] = NAMING[code] or {}
-        NAMING[code][kind] = true
-      end
-    end
-  end
-end
+-- text needs the device (summary's st or device). (DATA.info_naming, codegen/display_lua.py)
+local NAMING = DATA.info_naming
 
 -- tvb: the frame's, where it is shown; nil where its text is made as it is decoded (vw3.records
 -- remember_request), from its byte table then. st: the frame's stream, or device: its device, where the
@@ -9816,21 +9788,13 @@ local function other_record_ns(pinfo, number, abs)
   if abs == nil then return times[number] or nil end -- (a stand-in for a record's pinfo: its time kept)
   local ns = rtac_times[number]
   if ns == nil and abs ~= 0 then
-    local rel, reference = pinfo.rel_ts, c.reference
-    local drift = reference ~= nil and rel ~= nil and abs - rel - reference
-    if drift and drift < 1e-6 and drift > -1e-6 then
-      -- (the clock's nanos flag is for the times from abs_ts alone, which a capture with a reference of its
-      -- own has only at its start)
-      local from = rel * NS + 0.5
-      ns = c.reference_ns + (from - from % 1)
-    else
-      -- The first record, or a new reference (a time reference set in the GUI): from the record before.
-      ns = chained_ns(c, pinfo, number, abs)
-      reference = rel ~= nil and abs - rel -- (the reference record's time; 0: it has none)
-      if reference and math.abs(reference) >= 1 then
-        c.reference, c.reference_ns = reference, ns - exact_ns(c, rel)
-        usual_capture, usual_reference, usual_reference_ns = state, reference, c.reference_ns
-      end
+    -- The first record, or a new reference (a time reference set in the GUI): from the record before. (A
+    -- record of the reference the clock knows is record_ns's usual case, which sets the reference with it.)
+    local rel = pinfo.rel_ts
+    ns = chained_ns(c, pinfo, number, abs)
+    local reference = rel ~= nil and abs - rel -- (the reference record's time; 0: it has none)
+    if reference and math.abs(reference) >= 1 then
+      usual_capture, usual_reference, usual_reference_ns = state, reference, ns - exact_ns(c, rel)
     end
   end
   times[number] = ns or false
@@ -9843,7 +9807,7 @@ end
 local function record_ns(pinfo, number)
   local abs = pinfo.abs_ts
   -- Nearly every record: timed, of the capture whose reference record's time the clock knows, no RTAC
-  -- record; its time from the reference's, written out here (other_record_ns does the same, and the rest).
+  -- record; its time from the reference's (other_record_ns: the rest).
   if usual_capture ~= state or abs == 0 or abs == nil or rtac_times[number] ~= nil then
     return other_record_ns(pinfo, number, abs)
   end
@@ -10594,7 +10558,7 @@ end
 -- The modules in load order: those that need no Wireshark API first (plain lua5.2/lua5.4 loads them,
 -- tests/conformance runs them), then the Wireshark glue.
 local PURE = { "crc", "layouts", "stream", "rtu", "ascii", "feed", "decode", "pairing", "maps", "device", "story",
-  "explain", "selection", "annotator", "pack", "records", "api" }
+  "explain", "selection", "annotator", "pack", "records" }
 local WIRESHARK = { "fields", "tree", "show", "dissector" }
 
 -- (a second load of this file, as the tests do, starts from fresh modules)
@@ -10605,8 +10569,9 @@ local env = setmetatable({ DATA = DATA }, { __index = _ENV })
 package.loaded["vw3.env"] = env
 for _, name in ipairs(PURE) do require("vw3." .. name) end
 
-if Proto == nil then
-  return env.vw3 -- loaded outside Wireshark (lua5.x tests without a stub): the pure part only
+if Proto == nil then -- loaded outside Wireshark (lua5.x tests without a stub): the pure part's entry points
+  return { new_state = env.new_state, dissect_record = env.dissect_record, finish = env.finish,
+    settle = env.pack.settle, configure = env.configure }
 end
 
 if set_plugin_info then

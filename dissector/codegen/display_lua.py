@@ -122,16 +122,20 @@ def render_display() -> list[str]:
 def render_info_forms() -> list[str]:
     """The Lua lines, inside the generated block, that define DATA.info_forms: given tree.lua's helpers, the
     forms' functions by function code, then kind (FORMS[fn][kind]); a describer of describe._BY_NAME by its
-    name in BY_NAME."""
+    name in BY_NAME. And DATA.info_naming[fn][kind]: the forms that name a register as the frame's device
+    does (a `single` step)."""
     info, rules = info_forms(), rules_data()
     functions: dict[str, dict[str, list[str]]] = {}  # (by form, the distinct bodies its codes' layouts give)
     chosen: dict[int, dict[str, str]] = {}
+    naming: dict[int, list[str]] = {}  # (the forms with a `single` step: their text needs the frame's device)
     for kind, forms in info["forms"].items():
         for code, form in forms.items():
             steps = info["steps"][form]
             if isinstance(steps, str):
                 chosen.setdefault(code, {})[kind] = "BY_NAME" + _key(steps)
                 continue
+            if any(not isinstance(step, str) and step[0] == "single" for step in steps):
+                naming.setdefault(code, []).append(kind)
             places = field_places(rules["layouts"][rules["by_code"][kind][code]["layout"]])
             body = form_body(form, steps, places)
             bodies = functions.setdefault(form, {})
@@ -150,4 +154,4 @@ def render_info_forms() -> list[str]:
     for code, kinds in sorted(chosen.items()):
         entries = ", ".join(f"{kind} = {function}" for kind, function in sorted(kinds.items()))
         lines.append(f"    [{code}] = {{ {entries} }},")
-    return [*lines, "  }", "end"]
+    return [*lines, "  }", "end", f"DATA.info_naming = {lua_literal({code: set(kinds) for code, kinds in naming.items()})}"]

@@ -18,7 +18,7 @@
 -- The modules in load order: those that need no Wireshark API first (plain lua5.2/lua5.4 loads them,
 -- tests/conformance runs them), then the Wireshark glue.
 local PURE = { "crc", "layouts", "stream", "rtu", "ascii", "feed", "decode", "pairing", "maps", "device", "story",
-  "explain", "selection", "annotator", "pack", "records", "api" }
+  "explain", "selection", "annotator", "pack", "records" }
 local WIRESHARK = { "fields", "tree", "show", "dissector" }
 
 -- (a second load of this file, as the tests do, starts from fresh modules)
@@ -29,8 +29,9 @@ local env = setmetatable({ DATA = DATA }, { __index = _ENV })
 package.loaded["vw3.env"] = env
 for _, name in ipairs(PURE) do require("vw3." .. name) end
 
-if Proto == nil then
-  return env.vw3 -- loaded outside Wireshark (lua5.x tests without a stub): the pure part only
+if Proto == nil then -- loaded outside Wireshark (lua5.x tests without a stub): the pure part's entry points
+  return { new_state = env.new_state, dissect_record = env.dissect_record, finish = env.finish,
+    settle = env.pack.settle, configure = env.configure }
 end
 
 if set_plugin_info then

@@ -594,3 +594,4 @@ function lane.again(st)
   for key in pairs(st) do st[key] = nil end
   for key, value in pairs(fresh) do st[key] = value end
 end
+M.dissect_record, M.finish = dissect_record, finish -- (the pure part's entry points: main.lua)

@@ -58,21 +58,13 @@ local function other_record_ns(pinfo, number, abs)
   if abs == nil then return times[number] or nil end -- (a stand-in for a record's pinfo: its time kept)
   local ns = rtac_times[number]
   if ns == nil and abs ~= 0 then
-    local rel, reference = pinfo.rel_ts, c.reference
-    local drift = reference ~= nil and rel ~= nil and abs - rel - reference
-    if drift and drift < 1e-6 and drift > -1e-6 then
-      -- (the clock's nanos flag is for the times from abs_ts alone, which a capture with a reference of its
-      -- own has only at its start)
-      local from = rel * NS + 0.5
-      ns = c.reference_ns + (from - from % 1)
-    else
-      -- The first record, or a new reference (a time reference set in the GUI): from the record before.
-      ns = chained_ns(c, pinfo, number, abs)
-      reference = rel ~= nil and abs - rel -- (the reference record's time; 0: it has none)
-      if reference and math.abs(reference) >= 1 then
-        c.reference, c.reference_ns = reference, ns - exact_ns(c, rel)
-        usual_capture, usual_reference, usual_reference_ns = state, reference, c.reference_ns
-      end
+    -- The first record, or a new reference (a time reference set in the GUI): from the record before. (A
+    -- record of the reference the clock knows is record_ns's usual case, which sets the reference with it.)
+    local rel = pinfo.rel_ts
+    ns = chained_ns(c, pinfo, number, abs)
+    local reference = rel ~= nil and abs - rel -- (the reference record's time; 0: it has none)
+    if reference and math.abs(reference) >= 1 then
+      usual_capture, usual_reference, usual_reference_ns = state, reference, ns - exact_ns(c, rel)
     end
   end
   times[number] = ns or false
@@ -85,7 +77,7 @@ end
 local function record_ns(pinfo, number)
   local abs = pinfo.abs_ts
   -- Nearly every record: timed, of the capture whose reference record's time the clock knows, no RTAC
-  -- record; its time from the reference's, written out here (other_record_ns does the same, and the rest).
+  -- record; its time from the reference's (other_record_ns: the rest).
   if usual_capture ~= state or abs == 0 or abs == nil or rtac_times[number] ~= nil then
     return other_record_ns(pinfo, number, abs)
   end

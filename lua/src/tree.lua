@@ -295,16 +295,6 @@ local MEI_TYPES, DEVICE_ID_CODES = DATA.fields.names.mei_types, DATA.fields.name
 local RUN_INDICATOR = DATA.names.run_indicator
 local BY_NAME = {}
 
--- python_repr of a device's text, without its walk character by character where the text is printable
--- ASCII with no backslash and not both quotes (Python's repr then only puts it in quotes).
-local function repr_text(text)
-  if not text:find("[^ -~]") and not text:find("\\", 1, true) then
-    if not text:find("'", 1, true) then return "'" .. text .. "'" end
-    if not text:find('"', 1, true) then return '"' .. text .. '"' end
-  end
-  return python_repr(text)
-end
-
 -- describe._mei: `Read Device Identification, basic, from object 0`; an answer its objects' values (a
 -- revision the profile decoded as such: `V2.1`), another MEI type its name.
 function BY_NAME.mei(f, b, base)
@@ -332,7 +322,7 @@ function BY_NAME.report_server_id(f, b, base)
   if b[base + 2] < 2 then return "server id " .. DECIMAL[b[base + 3]] end -- (byte count 1: the id alone)
   local count, run = b[base + 2] - 2, b[base + 4]
   local text = count > 0 and printable(b, base + 5, base + 4 + count)
-  local data = text and repr_text(text) or count_text(count, "byte")
+  local data = text and python_repr(text) or count_text(count, "byte")
   return "server id " .. DECIMAL[b[base + 3]] .. ", run " .. (RUN_INDICATOR[run] or DECIMAL[run]) .. ", " .. data
 end
 
@@ -390,18 +380,8 @@ end
 local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, span_text, BY_NAME)
 
 -- NAMING[fn][kind]: the forms that name a register as the frame's device does (a `single` step): their
--- text needs the device (summary's st or device).
-local NAMING = {}
-for kind, forms in pairs(INFO.forms) do
-  for code, form in pairs(forms) do
-    for _, step in ipairs(type(INFO.steps[form]) == "table" and INFO.steps[form] or NO_INTERPRETATION) do
-      if type(step) == "table" and step[1] == "single" then
-        NAMING[code] = NAMING[code] or {}
-        NAMING[code][kind] = true
-      end
-    end
-  end
-end
+-- text needs the device (summary's st or device). (DATA.info_naming, codegen/display_lua.py)
+local NAMING = DATA.info_naming
 
 -- tvb: the frame's, where it is shown; nil where its text is made as it is decoded (vw3.records
 -- remember_request), from its byte table then. st: the frame's stream, or device: its device, where the
