@@ -181,8 +181,11 @@ class CaptureOutput:
         stdout: BinaryIO | None = None,
         interface: Interface | None = None,
         units: int = MICROS,
+        frame_records: bool = False,
     ) -> None:
         self.path = path
+        # --frame-records: an item is one record at its time, not the reads it came in (write_items)
+        self._frame_records = frame_records
         self._units = units  # of its times: a decode of a nanosecond capture writes nanoseconds
         self.format = file_format(path, fmt)
         self.ring = ring
@@ -337,6 +340,8 @@ class CaptureOutput:
         `settled` (sources/trail.py RecordTrail.settled): no item after these begins its first record before
         this stream offset; when none of these does either (none takes earlier bytes), the records ending
         there are out of _absorb's reach: they are written, not held back."""
+        if pieces and self._frame_records:
+            pieces = _whole_items(items, pieces)
         absorbing = pieces and any(split[0][3] < item.offset
                                    for item in items if (split := pieces.get(id(item))))
         self._settled = -1 if settled is None or absorbing else settled
@@ -547,6 +552,19 @@ class CaptureOutput:
                 os.unlink(self.paths[-1])
 
 
+def _whole_items(items: list[Item], pieces: dict[int, list[Piece]]) -> dict[int, list[Piece]]:
+    """`pieces` as --frame-records writes them: each item one piece at its own time, its comments all on it,
+    taking no bytes of the read before it (Wireshark's mbrtu reads a frame only whole in one record; the
+    silences inside a frame, which a tap's reads tell, are not kept)."""
+    whole = {}
+    for item in items:
+        split = pieces.get(id(item))
+        if split is not None:
+            whole[id(item)] = [(item.length, item.time, tuple(text for piece in split for text in piece[2]),
+                                item.offset)]
+    return whole
+
+
 def regular_file(path: str) -> bool:
     """A name that may be removed after a refused input: a regular file itself, not a symlink (-w
     link.pcap removed the link, -w /dev/stdout would remove /dev/stdout) nor a device (/dev/null)."""
@@ -564,6 +582,7 @@ def open_output(
     stdout: BinaryIO | None,
     interface: Interface | None = None,
     units: int = MICROS,
+    frame_records: bool = False,
 ) -> CaptureOutput:
     """The -w output from the options; ValueError for bad -b options, OSError from the system."""
     ring = Ring.parse(list(ring_specs)) if ring_specs else None
@@ -572,4 +591,5 @@ def open_output(
     if path == STDOUT and stdout is not None and stdout.isatty():
         # Binary records would garble the terminal (tshark and dumpcap refuse it too).
         raise ValueError("-w -: standard output is a terminal; pipe it (| wireshark -k -i -) or give a file")
-    return CaptureOutput(path, fmt, ring, flush=flush, stdout=stdout, interface=interface, units=units)
+    return CaptureOutput(path, fmt, ring, flush=flush, stdout=stdout, interface=interface, units=units,
+                         frame_records=frame_records)

@@ -21,6 +21,7 @@ from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 from dissector.protocol.printable import printable
 from dissector.render.describe import UNKNOWN_SUBFUNCTION, count_text, named_value, value_names
+from dissector.render.detail_window import NESTED_HEX_WIDTHS, hex_width, window_lines
 from dissector.render.filter_fields import CATALOGUE
 from dissector.render.summary import check_untyped, crc_text, noise_info
 from dissector.render.timefmt import whole_micros
@@ -82,6 +83,7 @@ _PROTECTED = frozenset(("protected", "non-existent", "ambiguous"))
 _INDENT = ["    " * depth for depth in range(32)]
 _KIND_TEXT = {kind: kind.value for kind in Kind}
 _EXCEPTION = Kind.EXCEPTION
+_RESPONSE = Kind.RESPONSE
 _MODBUS_RTU = "    Modbus RTU"
 _FUNCTION_LINES: dict[int, str] = {}  # spec names only: a profile's names vary per slave
 _SLAVE_LINES: dict[int, str] = {}
@@ -296,7 +298,9 @@ def _field_lines(detail: _Detail, depth: int, name: str, value: Any) -> None:
         texts.append(f"{label}: {_hex_named(name, value)}")
     elif isinstance(value, int) and not isinstance(value, bool):
         names = value_names().get(name)  # (the plugin's value strings: `Read code: basic (1)`)
-        texts.append(f"{label}: {value} (0x{value:X})" if names is None else f"{label}: {named_value(names, value)}")
+        width = NESTED_HEX_WIDTHS.get(name, 0)  # (FC43's more-follows byte: two digits, detail_window)
+        texts.append(f"{label}: {value} (0x{value:0{width}X})" if names is None else
+                     f"{label}: {named_value(names, value)}")
     else:
         texts.append(f"{label}: {value}")
 
@@ -328,7 +332,7 @@ def _head_key(frame: Frame) -> tuple[Any, ...] | None:
     cut = len(raw) - 2 - 2 * len(values)
     if cut < 2:
         return None
-    return (raw[:cut], frame.kind, frame.function_text, frame.subfunction_text)
+    return (raw[:cut], frame.kind, frame.function_text, frame.subfunction_text, frame.start, frame.quantity)
 
 
 def _middle(detail: _Detail, frame: Frame) -> None:
@@ -372,6 +376,8 @@ def _head_lines(detail: _Detail, frame: Frame) -> None:
         add(line)
     else:
         add(f"        Function: {function} (0x{function:02X}) {function_text}")
+    if kind is _RESPONSE and frame.start is not None:
+        out.extend(window_lines(frame, FUNCTION_LABELS))
     if kind is _EXCEPTION:
         exception = frame.exception_code
         shown = "?" if exception is None else exception  # (none: a malformed exception, as its summary)
@@ -386,14 +392,15 @@ def _head_lines(detail: _Detail, frame: Frame) -> None:
             if value is None or key[0] == "_" or key in ("values", "status") and registers:
                 continue
             if type(value) is int and key not in _HEX_NAMES:  # the common case, inline and kept: `Start: 8400 (0x20D0)`
-                kept = (function, key) if labelled else key
+                width = hex_width(frame, key)  # (a status word or a mask: all its digits, detail_window)
+                kept = (function, kind, key) if width else (function, key) if labelled else key
                 line = lines.get((kept, value))
                 if line is None:
                     if len(lines) >= _INT_FIELD_LINES_MAX:
                         lines.clear()
                     label = "        " + field_label(key, function)
                     names = value_names().get(key)
-                    shown = f"{value} (0x{value:X})" if names is None else named_value(names, value)
+                    shown = f"{value} (0x{value:0{width}X})" if names is None else named_value(names, value)
                     line = lines[kept, value] = f"{label}: {shown}"
                 add(line)
                 continue
@@ -472,7 +479,8 @@ def _build(item: Item, base: float | None, joined: bool) -> _Detail:
     ):
         # Slave to CRC depend on the bytes and the profile's words only: a polled request repeats them.
         key = (frame.raw, kind, frame.mode, frame.function_text, frame.subfunction_text,
-               bool(frame.notes) and check_untyped(frame), frame.span_label)  # the CRC line: typed?
+               bool(frame.notes) and check_untyped(frame), frame.span_label,  # the CRC line: typed?
+               frame.start, frame.quantity)  # (an answer's window: its request's, detail_window)
         add(_kept_text(_MIDDLES, key, _middle, frame))
     else:
         _middle(detail, frame)

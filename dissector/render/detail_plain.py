@@ -98,7 +98,7 @@ def _block_middle(frame: Frame, registers: Sequence[Register], untyped: bool) ->
         start = -1  # the addresses are in the registers' keys
         lines = tuple(map(_REGISTER_KEY, registers.registers() if type(registers) is RegisterList else registers))
     key = (frame.raw, frame.kind, frame.mode, frame.function_text, frame.subfunction_text, untyped,
-           frame.span_label, start)
+           frame.span_label, start, frame.start, frame.quantity)  # (the window: detail_window)
     kept = _BLOCK_MIDDLES.get(key)
     if kept is not None and kept[0] == lines:
         return kept[1]
@@ -177,7 +177,7 @@ def plain_frame_text(frame: Frame, base: float | None) -> str:
         if bits is None:
             if not size:
                 key = (frame.raw, kind, mode, frame.function_text, frame.subfunction_text, untyped,
-                       frame.span_label)  # as _build keeps it
+                       frame.span_label, frame.start, frame.quantity)  # as _build keeps it
                 middle = _kept_text(_MIDDLES, key, _middle, frame)
             elif listed and registers.plain:  # type: ignore[union-attr]
                 if size <= _BLOCK_MIDDLE_REGISTERS:
@@ -188,7 +188,7 @@ def plain_frame_text(frame: Frame, base: float | None) -> str:
                 middle = _block_middle(frame, registers, untyped)  # type: ignore[arg-type]
         elif not size and type(bits) is BitList and bits.count <= _BIT_MIDDLE_BITS:
             key = (frame.raw, kind, mode, frame.function_text, frame.subfunction_text, untyped,
-                   frame.span_label, bits.start, bits.count)
+                   frame.span_label, bits.start, bits.count, frame.quantity)  # (the window: detail_window)
             middle = _kept_text(_BIT_MIDDLES, key, _middle, frame, _BIT_MIDDLES_MAX)
     if middle is None:
         detail = _Detail(joined=True)

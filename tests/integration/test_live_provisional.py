@@ -106,7 +106,8 @@ def test_live_detail_fields_and_filter_say_provisional() -> None:
     blocks = "\n".join(lines).split("\n\n")
     assert [PROVISIONAL_LINE in block.splitlines() for block in blocks] == [True, True, True, False]
     assert [re.sub(r"\d+\.\d+ ms$", "- ms", line) for line in blocks[1].splitlines()[3:]] == [
-        "        Slave: 12", "        Function: 3 (0x03) Read Holding Registers", "        Byte count: 6 (0x6)",
+        "        Slave: 12", "        Function: 3 (0x03) Read Holding Registers", "        [Start address: 8400]",
+        "        [Quantity: 3]", "        Byte count: 6 (0x6)",
         "        Register 8400: 32768 (0x8000)", "        Register 8401: 3 (0x0003)", "        Register 8402: 2 (0x0002)",
         "        CRC: 0xE417 [CRC ok]", "    Request in frame: 1", "    Response time: - ms", PROVISIONAL_LINE]
     assert PROVISIONAL_LINE == ("    Profile: provisional (profile auto has not chosen this slave's device yet: values "

@@ -211,6 +211,7 @@ FIFO_DETAIL = """Frame 2: 14 bytes at offset 6, response (RTU)
     Modbus RTU
         Slave: 1
         Function: 24 (0x18) Read FIFO Queue
+        [FIFO pointer address: 1246]
         Byte count: 8 (0x8)
         FIFO count: 3 (0x3)
         Values (3)

@@ -1,0 +1,78 @@
+"""Two things -V says as the plugin's tree does (lua/src/show.lua), kept out of detail.py's line builders:
+
+- the window a response takes from its request (data/modbus.toml [lift] `request.start`, `request.quantity`:
+  a read's answer, FC23's, FC24's), which its bytes do not hold: `[Start address: 10]`, `[Quantity: 2]`,
+  FC24's `[FIFO pointer address: 0]` (the start named as detail.FUNCTION_LABELS names it, as the plugin's
+  START_WORDS); none where the request is not known;
+- the hex of a field the plugin shows in decimal and hex (data/pdu_fields.toml base DEC_HEX: a status word,
+  a mask, FC8's more-follows byte) written at the field's width in the frame, data/modbus.toml [layouts]
+  (`Status: 0 (0x0000)` for FC11's 16-bit status word, `And mask: 242 (0x00F2)`, `More follows: 0 (0x00)`),
+  as Wireshark writes a field's hex; other numbers keep their shortest hex (`Start: 100 (0x64)`).
+"""
+from __future__ import annotations
+
+import tomllib
+from importlib import resources
+
+from dissector.model import Frame, Kind
+from dissector.protocol.spec import SPEC
+from dissector.protocol.table import TABLE, layout_for, lift_of
+
+_DIGITS = {"u8": 2, "u16": 4, "odd": 2}  # hex digits of a layout field type (`odd`: a register's lone byte)
+
+
+def _widths() -> tuple[dict[tuple[int, Kind, str], int], dict[str, int]]:
+    """({(function, kind, key): digits} of the DEC_HEX fields of each code's layout, {key: digits} of those
+    of a part a field switches to (FC43's device id answer), where no two parts disagree)."""
+    text = resources.files("dissector").joinpath("data/pdu_fields.toml").read_text(encoding="utf-8")
+    wanted: dict[str, set[str]] = {}  # layout: its DEC_HEX fields
+    for entry in tomllib.loads(text).get("field", ()):
+        if entry.get("base") in ("DEC_HEX", "HEX"):
+            for pdu in entry.get("pdu", ()):
+                layout, _, key = pdu.partition(".")
+                wanted.setdefault(layout, set()).add(key)
+    digits: dict[str, dict[str, int]] = {}  # layout: {key: digits}
+    for layout, keys in wanted.items():
+        for spec in SPEC.layouts.get(layout) or SPEC.parts.get(layout, ()):
+            key, _, kind = spec.partition(":")
+            kind = kind.partition("(")[0]
+            if key in keys and kind in _DIGITS:
+                digits.setdefault(layout, {})[key] = _DIGITS[kind]
+    top: dict[tuple[int, Kind, str], int] = {}
+    for function in TABLE:
+        for kind in (Kind.REQUEST, Kind.RESPONSE):
+            for key, width in digits.get(layout_for(function, kind).name, {}).items():
+                top[function, kind, key] = width
+    tops = {layout_for(function, kind).name for function in TABLE for kind in (Kind.REQUEST, Kind.RESPONSE)}
+    nested: dict[str, int] = {}
+    for layout, keys in digits.items():
+        if layout not in tops:
+            for key, width in keys.items():
+                nested[key] = width if nested.get(key, width) == width else 0
+    return top, {key: width for key, width in nested.items() if width}
+
+
+HEX_WIDTHS, NESTED_HEX_WIDTHS = _widths()
+
+
+def hex_width(frame: Frame, key: str) -> int:
+    """The hex digits -V writes a top-level int field of `frame` with (0: its shortest hex)."""
+    return HEX_WIDTHS.get((frame.function, frame.kind, key), 0)
+
+
+def window_lines(frame: Frame, labels: dict[tuple[int, str], str]) -> list[str]:
+    """`[Start address: N]` (or the function's own word) and `[Quantity: N]` of a response's window where its
+    request gave it (`labels`: detail.FUNCTION_LABELS)."""
+    if frame.kind is not Kind.RESPONSE or frame.start is None:
+        return []
+    lift = lift_of(frame.function, frame.kind)
+    if lift is None:
+        return []
+    lines = []
+    if lift.start == "request.start":
+        title = next((label for (function, _key), label in labels.items() if function == frame.function),
+                     "Start address")
+        lines.append(f"        [{title}: {frame.start}]")
+    if lift.quantity == "request.quantity" and frame.quantity is not None:
+        lines.append(f"        [Quantity: {frame.quantity}]")
+    return lines
