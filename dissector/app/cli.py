@@ -145,7 +145,7 @@ class Sinks:
                 first = args.files[0] if args.files and not args.hex else None
                 interface = write_interface(first, "pcapng" if args.format in (None, "pcapng") else None, args)
                 self.pcap = open_output(args.write, args.file_format, args.ring, False, stdout, interface,
-                                        write_units(args.files, env.stdin, args.format))
+                                        write_units(args.files, env.stdin, args.format), args.frame_records)
             except ValueError as error:
                 raise UsageError(str(error)) from None
             except OSError as error:

@@ -53,6 +53,7 @@ class DecodeOptions:
     write: str | None = None
     file_format: str | None = None  # -F
     ring: tuple[str, ...] = ()  # -b
+    frame_records: bool = False  # --frame-records
     print_too: bool = False
     quiet: bool = False  # -q
     stats: bool = False
@@ -132,6 +133,11 @@ def build_parser() -> argparse.ArgumentParser:
     output.add_argument(
         "-b", dest="ring", action="append", metavar="filesize:KB|duration:S|files:N",
         help="-w ring buffer, as dumpcap: a new file every KB kB or S seconds, keeping the last N",
+    )
+    output.add_argument(
+        "--frame-records", action="store_true",
+        help="-w one record per frame (or noise run) at its time, as Wireshark's mbrtu reads frames, "
+             "not the reads a frame came in (a tap's silences inside a frame are not kept)",
     )
     output.add_argument("-P", dest="print_too", action="store_true", help="print the items even with -w")
     output.add_argument(
@@ -275,6 +281,7 @@ def decode_options(args: argparse.Namespace) -> DecodeOptions:
         write=args.write,
         file_format=args.file_format,
         ring=tuple(args.ring or ()),
+        frame_records=args.frame_records,
         print_too=args.print_too,
         quiet=args.quiet,
         stats=args.stats,
@@ -337,6 +344,7 @@ def _refuse_conflicts(args: argparse.Namespace) -> None:
         (args.print_too and args.quiet, "-P prints the items, -q prints none: choose one"),
         (bool(args.ring) and args.write is None, "-b (ring buffer) needs -w FILE"),
         (args.file_format is not None and args.write is None, "-F (file format) needs -w FILE"),
+        (args.frame_records and args.write is None, "--frame-records needs -w FILE"),
         (args.stats and (args.detail or args.hexdump), "--stats replaces the items: -V and -x show none"),
         (args.stats and args.output_format == "fields", "--stats replaces the items: -T fields shows none"),
         (bool(args.hex) and args.format not in (None, "hex", "hexdump", "decimal"),
