@@ -3299,7 +3299,7 @@ local RULES = {["lift"]={["read_request"]={["start"]="start",["quantity"]="quant
   [3] = true,
   [10] = true,
   [20] = true,
-}}
+},["byte_text"]={[0]="\\x00",[1]="\\x01",[2]="\\x02",[3]="\\x03",[4]="\\x04",[5]="\\x05",[6]="\\x06",[7]="\\x07",[8]="\\x08",[9]="\\t",[10]="\\n",[11]="\\x0b",[12]="\\x0c",[13]="\\r",[14]="\\x0e",[15]="\\x0f",[16]="\\x10",[17]="\\x11",[18]="\\x12",[19]="\\x13",[20]="\\x14",[21]="\\x15",[22]="\\x16",[23]="\\x17",[24]="\\x18",[25]="\\x19",[26]="\\x1a",[27]="\\x1b",[28]="\\x1c",[29]="\\x1d",[30]="\\x1e",[31]="\\x1f",[32]=" ",[33]="!",[34]="\"",[35]="#",[36]="$",[37]="%",[38]="&",[39]="\\'",[40]="(",[41]=")",[42]="*",[43]="+",[44]=",",[45]="-",[46]=".",[47]="/",[48]="0",[49]="1",[50]="2",[51]="3",[52]="4",[53]="5",[54]="6",[55]="7",[56]="8",[57]="9",[58]=":",[59]=";",[60]="<",[61]="=",[62]=">",[63]="?",[64]="@",[65]="A",[66]="B",[67]="C",[68]="D",[69]="E",[70]="F",[71]="G",[72]="H",[73]="I",[74]="J",[75]="K",[76]="L",[77]="M",[78]="N",[79]="O",[80]="P",[81]="Q",[82]="R",[83]="S",[84]="T",[85]="U",[86]="V",[87]="W",[88]="X",[89]="Y",[90]="Z",[91]="[",[92]="\\\\",[93]="]",[94]="^",[95]="_",[96]="`",[97]="a",[98]="b",[99]="c",[100]="d",[101]="e",[102]="f",[103]="g",[104]="h",[105]="i",[106]="j",[107]="k",[108]="l",[109]="m",[110]="n",[111]="o",[112]="p",[113]="q",[114]="r",[115]="s",[116]="t",[117]="u",[118]="v",[119]="w",[120]="x",[121]="y",[122]="z",[123]="{",[124]="|",[125]="}",[126]="~",[127]="\\x7f",[128]="\\x80",[129]="\\x81",[130]="\\x82",[131]="\\x83",[132]="\\x84",[133]="\\x85",[134]="\\x86",[135]="\\x87",[136]="\\x88",[137]="\\x89",[138]="\\x8a",[139]="\\x8b",[140]="\\x8c",[141]="\\x8d",[142]="\\x8e",[143]="\\x8f",[144]="\\x90",[145]="\\x91",[146]="\\x92",[147]="\\x93",[148]="\\x94",[149]="\\x95",[150]="\\x96",[151]="\\x97",[152]="\\x98",[153]="\\x99",[154]="\\x9a",[155]="\\x9b",[156]="\\x9c",[157]="\\x9d",[158]="\\x9e",[159]="\\x9f",[160]="\\xa0",[161]="\\xa1",[162]="\\xa2",[163]="\\xa3",[164]="\\xa4",[165]="\\xa5",[166]="\\xa6",[167]="\\xa7",[168]="\\xa8",[169]="\\xa9",[170]="\\xaa",[171]="\\xab",[172]="\\xac",[173]="\\xad",[174]="\\xae",[175]="\\xaf",[176]="\\xb0",[177]="\\xb1",[178]="\\xb2",[179]="\\xb3",[180]="\\xb4",[181]="\\xb5",[182]="\\xb6",[183]="\\xb7",[184]="\\xb8",[185]="\\xb9",[186]="\\xba",[187]="\\xbb",[188]="\\xbc",[189]="\\xbd",[190]="\\xbe",[191]="\\xbf",[192]="\\xc0",[193]="\\xc1",[194]="\\xc2",[195]="\\xc3",[196]="\\xc4",[197]="\\xc5",[198]="\\xc6",[199]="\\xc7",[200]="\\xc8",[201]="\\xc9",[202]="\\xca",[203]="\\xcb",[204]="\\xcc",[205]="\\xcd",[206]="\\xce",[207]="\\xcf",[208]="\\xd0",[209]="\\xd1",[210]="\\xd2",[211]="\\xd3",[212]="\\xd4",[213]="\\xd5",[214]="\\xd6",[215]="\\xd7",[216]="\\xd8",[217]="\\xd9",[218]="\\xda",[219]="\\xdb",[220]="\\xdc",[221]="\\xdd",[222]="\\xde",[223]="\\xdf",[224]="\\xe0",[225]="\\xe1",[226]="\\xe2",[227]="\\xe3",[228]="\\xe4",[229]="\\xe5",[230]="\\xe6",[231]="\\xe7",[232]="\\xe8",[233]="\\xe9",[234]="\\xea",[235]="\\xeb",[236]="\\xec",[237]="\\xed",[238]="\\xee",[239]="\\xef",[240]="\\xf0",[241]="\\xf1",[242]="\\xf2",[243]="\\xf3",[244]="\\xf4",[245]="\\xf5",[246]="\\xf6",[247]="\\xf7",[248]="\\xf8",[249]="\\xf9",[250]="\\xfa",[251]="\\xfb",[252]="\\xfc",[253]="\\xfd",[254]="\\xfe",[255]="\\xff"},["mandatory_objects"]="VendorName, ProductCode, MajorMinorRevision"}
 -- END RULES
 DATA.rules = RULES
 end
@@ -6045,19 +6045,9 @@ local EXCEPTIONS = DATA.exceptions or {}
 local DIAGNOSTICS = DATA.diagnostics or {}
 local LIMITS = RULES.limits
 local NOT_BROADCAST = DATA.not_broadcast or {}
--- FC43's mandatory objects by name (RULES.limits.device_id_mandatory): `VendorName, ProductCode, ...`
-local MANDATORY_OBJECTS = {}
-for id = LIMITS.device_id_mandatory[1], LIMITS.device_id_mandatory[2] do
-  MANDATORY_OBJECTS[#MANDATORY_OBJECTS + 1] = DATA.device_id_objects[id]
-end
-MANDATORY_OBJECTS = table.concat(MANDATORY_OBJECTS, ", ")
--- A device object's byte as in a Python bytes literal between single quotes (printable.py _BYTE_TEXT):
--- printable ASCII itself, \' and \\, \t \n \r, every other byte \xNN (never a control character).
-local BYTE_TEXT = {}
-for byte = 0, 255 do
-  BYTE_TEXT[byte] = byte >= 32 and byte < 127 and string.char(byte) or format("\\x%02x", byte)
-end
-BYTE_TEXT[39], BYTE_TEXT[92], BYTE_TEXT[9], BYTE_TEXT[10], BYTE_TEXT[13] = "\\'", "\\\\", "\\t", "\\n", "\\r"
+-- FC43's mandatory objects by name (`VendorName, ProductCode, ...`), and a device object's byte as in a Python
+-- bytes literal between single quotes (never a control character): RULES.mandatory_objects, RULES.byte_text.
+local MANDATORY_OBJECTS, BYTE_TEXT = RULES.mandatory_objects, RULES.byte_text
 
 -- A catalogue entry's text (format, params; repr: the parameters Python writes as `!r`, shown by `quote`)
 -- with its parameters by name, as Python fills them in: the texts here and maps.py's MESSAGES alike.
@@ -6090,6 +6080,27 @@ local function u16(b, k) return b[k] * 256 + b[k + 1] end
 local function warn(frame, text)
   local warnings = frame.warnings
   if warnings == nil then frame.warnings = { text } else warnings[#warnings + 1] = text end
+end
+
+local function note(f, text)
+  local notes = f.notes
+  if notes == nil then f.notes = { text } else notes[#notes + 1] = text end
+end
+
+-- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
+local function string_of(b, first, count)
+  local parts = {}
+  for k = 0, count - 1, 200 do -- (200 at a time: unpack puts them on the stack, string.char's arguments)
+    parts[#parts + 1] = string.char(table.unpack(b, first + k, first + math.min(k + 200, count) - 1))
+  end
+  return concat(parts)
+end
+
+-- Bytes b[first .. last] in hex, each by `pattern` (%02x, %02X), joined by `gap`.
+local function hex_of(b, first, last, pattern, gap)
+  local out = {}
+  for k = first, last do out[#out + 1] = format(pattern, b[k]) end
+  return concat(out, gap)
 end
 
 -- Does the frame tell the parameters anything (devices/memory.py)? Not one that failed its check (the
@@ -6167,16 +6178,11 @@ local function range_text(what, value, low, high)
   return say("range", { what = what, value = value, low = low, high = high })
 end
 
--- The data bytes after the function code (after `skip` more: FC8's sub-function), as a string.
-local function data_bytes_of(f, b, skip)
-  return string.char(table.unpack(b, f.data_at + skip, f.data_at + f.data_len - 1))
-end
-
 -- An answer that repeats its request's data whole (FC21's; from `skip`: an FC8 sub-function's,
 -- [diagnostic_answers]): a request keeps them as a string (its byte table is dropped before its answer comes);
 -- an answer that differs answered other data (fields._diagnostics, _check_echo).
 local function check_data_echo(f, b, request, skip)
-  local data = data_bytes_of(f, b, skip)
+  local data = string_of(b, f.data_at + skip, f.data_len - skip)
   if f.kind == REQUEST then
     f.fields.echoed = data
   elseif request ~= nil and request.fields ~= nil and request.fields.echoed ~= data then
@@ -6203,9 +6209,7 @@ end
 -- A write's words past its quantity (fields.py _past_quantity), `size` bytes at b[at]: no register written,
 -- warned by their bytes (the text `key`).
 local function past_quantity(f, b, at, size, quantity, key)
-  local hex = {}
-  for k = at, at + size - 1 do hex[#hex + 1] = format("%02x", b[k]) end
-  warn(f, say(key, { count = size, quantity = quantity, data = concat(hex, " ") }))
+  warn(f, say(key, { count = size, quantity = quantity, data = hex_of(b, at, at + size - 1, "%02x", " ") }))
 end
 
 -- An FC8 request's data word as the spec has it for its sub-function (RULES.diagnostic_data, fields.py
@@ -6224,19 +6228,10 @@ local function diagnostic_data(f, b, subfunction, rule)
       or say("diagnostic_byte", { what = rule.character, code = code }))
   else
     -- (the data as sent, in hex; rule.allowed: the words the spec allows, or its character then 00)
-    local data = data_bytes_of(f, b, 2):gsub(".", function(byte) return format("%02X", byte:byte()) end)
+    local data = hex_of(b, at, f.data_at + f.data_len - 1, "%02X", "")
     warn(f, say("diagnostic_data", { data = data ~= "" and data or "(none)", subfunction = subfunction,
       allowed = rule.allowed }))
   end
-end
-
--- An FC17 answer's server id is device specific in length (fields.py _report_server_id_response): where is
--- the first byte from b[from] to b[last] that is a run indicator (00, FF) that may follow a longer id? (nil)
-local function run_indicator_after(b, from, last, names)
-  for k = from, last do
-    if names[b[k]] ~= nil then return k end
-  end
-  return nil
 end
 
 -- The FC8 sub-functions whose answer repeats the request's data ([diagnostic_answers]): a request's data are
@@ -6290,14 +6285,15 @@ local SPECIAL = {
     elseif run == nil then -- (byte count 1: the server id alone, the layout's ?(byte_count-1))
       warn(f, say("no_run_indicator", { count = count }))
     elseif names[run] == nil then
-      local first = f.data_at + 1 -- (the server id's first byte)
-      local ends = run_indicator_after(b, first + 1, f.data_at + count, names)
+      -- An FC17 answer's server id is device specific in length (fields.py _report_server_id_response): the
+      -- first byte after its first that is a run indicator (00, FF) may follow a longer id.
+      local first, ends = f.data_at + 1, nil -- (the server id's first byte)
+      for k = f.data_at + count, first + 1, -1 do ends = names[b[k]] ~= nil and k or ends end
       if ends == nil then
         warn(f, say("run_indicator", { value = run })) -- (OFF, ON: none where any length of server id puts it)
       else -- (the id runs to the first 00 or FF after its first byte: fields.py _report_server_id_response)
-        local text, hex = string.char(table.unpack(b, first, ends - 1)), {}
-        for k = first, ends - 1 do hex[#hex + 1] = format("%02X", b[k]) end
-        local shown = text:find("[^ -~]") and concat(hex, " ") or python_repr(text)
+        local text = string_of(b, first, ends - first)
+        local shown = text:find("[^ -~]") and hex_of(b, first, ends - 1, "%02X", " ") or python_repr(text)
         warn(f, say("longer_server_id", { value = run, server_id = shown, run = names[b[ends]] }))
       end
     end
@@ -6350,8 +6346,7 @@ local function decode_frame(f)
   if request ~= nil and not verified(request) and WINDOW_ASKED[f.fn] then
     -- Its request failed its check (annotate_with kept none of its fields): no addresses
     -- (decode/fields.py lifter, pairing.py trusted_request).
-    local text, notes = say("request_damaged", { check = f.ascii and "LRC" or "CRC" }), f.notes
-    if notes == nil then f.notes = { text } else notes[#notes + 1] = text end
+    note(f, say("request_damaged", { check = f.ascii and "LRC" or "CRC" }))
   end
   if used < len then warn(f, say("trailing", { count = len - used })) end
   if f.broadcast and NOT_BROADCAST[f.fn] then
@@ -6361,8 +6356,8 @@ end
 M.CONFIRMED, M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS = CONFIRMED, DIAGNOSTICS, EXCEPTIONS, FUNCTIONS
 M.LIFT_OF, M.LIMITS, M.NOT_BROADCAST, M.bit_at = LIFT_OF, LIMITS, NOT_BROADCAST, bit_at
 M.decode_frame, M.exception_name, M.fill, M.function_name = decode_frame, exception_name, fill, function_name
-M.register_at, M.release_run, M.say, M.trusted_request, M.u16 = register_at, release_run, say, trusted_request, u16
-M.verified, M.warn = verified, warn
+M.note, M.register_at, M.release_run, M.say, M.string_of = note, register_at, release_run, say, string_of
+M.trusted_request, M.u16, M.verified, M.warn = trusted_request, u16, verified, warn
 end
 
 -- ---- vw3.pairing: lua/src/pairing.lua ----
@@ -6373,7 +6368,7 @@ package.preload["vw3.pairing"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer
-local next, release_run, say, warn = next, release_run, say, warn
+local next, note, release_run, say, string_of, warn = next, note, release_run, say, string_of, warn
 local UNMATCHED, BROADCAST_ADDRESS = say("unmatched", {}), say("broadcast_address", {})
 local NEVER_ANSWERED_NOTE = say("never_answered", {})
 local CAPTURE_ENDS_UNKNOWN = say("capture_ends_unknown", {})
@@ -6412,13 +6407,8 @@ local function listening_since(st, slave)
   return since
 end
 
--- Follows the mode through request f; returns the 08/04 its slave was in the mode since (nil: not in it) and
--- f's sub-function (nil: not an intact FC8 request, which no slave acts on).
--- A slave taken to be in the mode answered (pairing.py _heard): it is not in it; its request's note goes.
-local function heard(st, request, answer)
-  local slave = request.slave
-  local since = listening_since(st, slave)
-  if not since then return end -- (the 08/01 that ended the mode: already out of it)
+-- The slave leaves the mode (a broadcast 08/04 keeps the others in it).
+local function leave(st, slave)
   local listening = st.listening
   if st.listening_all ~= nil then
     listening[slave] = false
@@ -6426,6 +6416,16 @@ local function heard(st, request, answer)
     listening[slave] = nil
     if next(listening) == nil then st.listening = nil end
   end
+end
+
+-- Follows the mode through request f; returns the 08/04 its slave was in the mode since (nil: not in it) and
+-- f's sub-function (nil: not an intact FC8 request, which no slave acts on).
+-- A slave taken to be in the mode answered (pairing.py _heard): it is not in it; its request's note goes.
+local function heard(st, request, answer)
+  local slave = request.slave
+  local since = listening_since(st, slave)
+  if not since then return end -- (the 08/01 that ended the mode: already out of it)
+  leave(st, slave)
   local values = { slave = slave, number = since.number, how = since.slave == 0 and LISTEN_ONLY_BROADCAST or "" }
   local said, notes, kept = say("listen_only", values), request.notes or {}, {}
   for index = 1, #notes do
@@ -6451,11 +6451,8 @@ local function listen_only(st, f)
     elseif sub == SUB_RESTART and listening ~= nil then
       if slave == 0 then
         st.listening, st.listening_all = nil, nil
-      elseif st.listening_all ~= nil then
-        listening[slave] = false
       else
-        listening[slave] = nil
-        if next(listening) == nil then st.listening = nil end
+        leave(st, slave)
       end
     end
   end
@@ -6483,11 +6480,13 @@ local function sent_key(f)
   return value * 65536 + f.crc
 end
 
--- Are the bytes of `f` (its byte table at hand) those of `request` (same slave and function)? A request
+-- Are the bytes of `f` (its byte table at hand) those of `request`, its slave and function included? A request
 -- whose byte table has gone: what stands for them (sent_key), else (a request not kept) a longer one's length
 -- and good CRC.
 local function same_bytes(st, request, f)
-  if request.length ~= f.length or request.crc ~= f.crc then return false end
+  if request.slave ~= f.slave or request.fn ~= f.fn or request.length ~= f.length or request.crc ~= f.crc then
+    return false
+  end
   local a, b = request.b, f.b
   if a == nil then
     if st.sent_for == request then return st.sent == sent_key(f) end
@@ -6528,9 +6527,11 @@ local function same_echo(request, f)
   return asked:sub(1, both) == got:sub(1, both)
 end
 
--- Does a normal answer repeat what the spec has it repeat of its request (pairing.py _echoes)?
-local function echoes(request, answer)
-  return answer.kind ~= RESPONSE or same_echo(request, answer)
+-- Does `answer` answer `request` (nil: none): its slave and function, and a normal answer repeats what the
+-- spec has it repeat of its request (pairing.py _echoes)?
+local function answers(request, answer)
+  return request ~= nil and request.slave == answer.slave and request.fn == answer.fn
+    and (answer.kind ~= RESPONSE or same_echo(request, answer))
 end
 
 -- Would the framer, awaiting `request`'s answer, read `f` as it (rules.py Awaiting._awaited)?
@@ -6572,20 +6573,14 @@ local function pair(st, f)
       f.kind = REQUEST
       if answered(st, f) then st.retried = f end
     end
-    if f.kind == RESPONSE and late ~= nil and late.slave == f.slave and late.fn == f.fn and same_bytes(st, late, f) then
-      -- The request again, past the timeout: the master's retry. (The framer read it as an answer and awaits
-      -- nothing, unless it read it as a request: flipped.)
-      f.kind, late = REQUEST, nil
-      st.echoed = nil
+    -- The request again, past the timeout (late: the master's retry), or to a slave in Listen Only Mode, which
+    -- answers nothing, the 08/01 that ends the mode included (the master's repeat). (The framer read it as an
+    -- answer and awaits nothing, unless it read it as a request: flipped. Never both: late leaves no pending.)
+    local again = late or not flipped and pending ~= nil and pending.unheard and pending
+    if f.kind == RESPONSE and again and same_bytes(st, again, f) then
+      f.kind, st.echoed = REQUEST, nil
+      if again == late then late = nil end
       if answered(st, f) and not flipped then st.retried = f end
-    end
-    if not flipped and f.kind == RESPONSE and pending ~= nil and pending.unheard and pending.slave == f.slave
-        and pending.fn == f.fn and same_bytes(st, pending, f) then
-      -- A slave in Listen Only Mode answers nothing, the 08/01 that ends the mode included: the request again is
-      -- the master's repeat. (The framer read it as an answer and awaits nothing.)
-      f.kind = REQUEST
-      st.echoed = nil
-      if answered(st, f) then st.retried = f end
     end
   end
   if f.kind == REQUEST then
@@ -6611,7 +6606,7 @@ local function pair(st, f)
     end
     return
   end
-  if pending ~= nil and pending.slave == f.slave and pending.fn == f.fn and echoes(pending, f) then
+  if answers(pending, f) then
     local listening = st.listening
     if listening ~= nil and f.kind == EXCEPTION and listening[f.slave] == pending then
       listening[f.slave] = nil -- (it refused the 08/04: not in the mode)
@@ -6625,7 +6620,7 @@ local function pair(st, f)
     if f.time ~= nil and pending.time ~= nil and f.time < pending.time then
       warn(f, say("backwards", { ahead_ms = (pending.time - f.time) / NS * 1000, number = pending.number }))
     end
-  elseif late ~= nil and late.slave == f.slave and late.fn == f.fn and echoes(late, f) then
+  elseif answers(late, f) then
     warn(f, say("late", { delay_ms = (f.time - late.time) / NS * 1000, number = late.number,
       timeout_ms = timeout * 1000 }))
   else
@@ -7195,11 +7190,6 @@ local function device_of(st, f)
   return device_for(st, f.slave)
 end
 
-local function note(f, text)
-  local notes = f.notes
-  if notes == nil then f.notes = { text } else notes[#notes + 1] = text end
-end
-
 local function has_note(f, text)
   for _, existing in ipairs(f.notes or NO_INTERPRETATION) do
     if existing == text then return true end
@@ -7307,7 +7297,7 @@ end
 M.PLC_LABELS, M.address_name, M.address_runs, M.build_device = PLC_LABELS, address_name, address_runs, build_device
 M.consecutive, M.copied, M.device_for, M.device_of = consecutive, copied, device_for, device_of
 M.has_note, M.interpret, M.interpret_wide, M.layered_rows = has_note, interpret, interpret_wide, layered_rows
-M.note, M.span_name = note, span_name
+M.span_name = span_name
 end
 
 -- ---- vw3.story: lua/src/story.lua ----
@@ -7606,12 +7596,23 @@ package.preload["vw3.explain"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.explain"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, LIFT_OF, NOT_BROADCAST, PLAIN_READS, PLC_LABELS = DATA, LIFT_OF, NOT_BROADCAST, PLAIN_READS, PLC_LABELS
-local READS, READ_LIMIT, REQUEST, RESPONSE, address_name = READS, READ_LIMIT, REQUEST, RESPONSE, address_name
-local address_runs, concat, consecutive, format = address_runs, concat, consecutive, format
-local function_name, ipairs, lane, math, next, note = function_name, ipairs, lane, math, next, note
-local plc_base, say, span_name, story, tonumber, track = plc_base, say, span_name, story, tonumber, track
-local trusted_request, u16, verified, warn = trusted_request, u16, verified, warn
+local DATA, LIFT_OF, NOT_BROADCAST, NO_INTERPRETATION = DATA, LIFT_OF, NOT_BROADCAST, NO_INTERPRETATION
+local PLAIN_READS, PLC_LABELS, READS, READ_LIMIT, REQUEST = PLAIN_READS, PLC_LABELS, READS, READ_LIMIT, REQUEST
+local RESPONSE, address_name, address_runs, concat = RESPONSE, address_name, address_runs, concat
+local consecutive, format, function_name, ipairs, lane = consecutive, format, function_name, ipairs, lane
+local math, next, note, plc_base, say, span_name, story = math, next, note, plc_base, say, span_name, story
+local tonumber, track, trusted_request, u16, verified, warn = tonumber, track, trusted_request, u16, verified, warn
+
+-- Each quantity request f's lifting rule checks (FC23: read and write, as the spec's checks name them) with
+-- the device's limit for it (nil: none): judge(f, profile, what, quantity, limit) until one returns true.
+local function quantities(f, profile, limits, judge)
+  local rule = LIFT_OF[REQUEST][f.fn]
+  if rule == nil or rule.write_window == nil then return judge(f, profile, "quantity", f.quantity, limits[1]) end
+  for index, check in ipairs(f.fields and rule.checks or NO_INTERPRETATION) do
+    if judge(f, profile, check.what, f.fields[check.field], limits[index]) then return true end
+  end
+  return false
+end
 
 -- A quantity above the device's limit for the function (limit: nil when the device gives none). (Here a
 -- function is named as its frame shows it: f.function_text, the profile's name annotate_with set, or the spec's.)
@@ -7634,18 +7635,7 @@ local function check_request(f, device)
     warn(f, say("subfunction_not_supported", { subfunction = sub, name = DATA.diagnostics[sub], device = profile.device }))
   end
   local limits = profile.limits[code]
-  if limits ~= nil then
-    -- (no tables: this runs for every request)
-    local rule = LIFT_OF[REQUEST][code]
-    if rule == nil or rule.write_window == nil then
-      check_limit(f, profile, "quantity", f.quantity, limits[1])
-    elseif f.fields ~= nil then
-      -- read and write quantities (FC23): as the spec's checks of the lifting rule name them
-      for index, check in ipairs(rule.checks) do
-        check_limit(f, profile, check.what, f.fields[check.field], limits[index])
-      end
-    end
-  end
+  if limits ~= nil then quantities(f, profile, limits, check_limit) end
   -- (decode_frame already warned where the spec's own rule forbids the broadcast)
   if f.broadcast and profile.broadcast ~= nil and not profile.broadcast[code] and not NOT_BROADCAST[code] then
     warn(f, say("device_broadcast", { name = f.function_text or function_name(code), device = profile.device,
@@ -7686,22 +7676,16 @@ local function check_writes(f, device)
   end
 end
 
-local function outside(quantity, limit)
+local function outside(_, _, _, quantity, limit)
   return limit ~= nil and quantity ~= nil and not (quantity >= 1 and quantity <= limit)
 end
 
 local function holds(when, request, profile)
   local fields = request.fields
   if when == "quantity" then
-    -- Every quantity the request's lifting rule checks (FC23: read and write, as check_request warns of
-    -- them), each against the device's limit for it (without one, a read's READ_LIMIT): explain._holds
-    local limits = profile.limits[request.fn] or { READ_LIMIT }
-    local rule = LIFT_OF[REQUEST][request.fn]
-    if rule == nil or rule.write_window == nil or fields == nil then return outside(request.quantity, limits[1]) end
-    for index, check in ipairs(rule.checks) do
-      if outside(fields[check.field], limits[index]) then return true end
-    end
-    return false
+    -- Every quantity the request's lifting rule checks (as check_request warns of them) outside the device's
+    -- limit for it (without one, a read's READ_LIMIT): explain._holds
+    return quantities(request, profile, profile.limits[request.fn] or { READ_LIMIT }, outside)
   end
   return when == "byte_count" and fields ~= nil and fields.byte_count ~= nil and fields.quantity ~= nil
     and fields.byte_count ~= 2 * fields.quantity
@@ -8240,14 +8224,13 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, CONFIRMED, DATA, EXCEPTION, PROFILES, READS = AUTO, CONFIRMED, DATA, EXCEPTION, PROFILES, READS
 local REQUEST, RESPONSE, annotate_list, annotate_registers = REQUEST, RESPONSE, annotate_list, annotate_registers
-local check_request, check_writes, concat, describe = check_request, check_writes, concat, describe
-local device_of, diagnostics_note, explain_exception = device_of, diagnostics_note, explain_exception
-local explain_objects, frame_labels, ipairs, lane, math = explain_objects, frame_labels, ipairs, lane, math
-local pairs, parse_map_choice, parse_profile_choice = pairs, parse_map_choice, parse_profile_choice
-local refused_registers, register_at, remember_list = refused_registers, register_at, remember_list
-local remember_mask, remember_writes, say, select = remember_mask, remember_writes, say, select
-local span_label, string, table, track, trusted_request = span_label, string, table, track, trusted_request
-local verified, words_at = verified, words_at
+local check_request, check_writes, describe, device_of = check_request, check_writes, describe, device_of
+local diagnostics_note, explain_exception, explain_objects = diagnostics_note, explain_exception, explain_objects
+local frame_labels, ipairs, lane, pairs, parse_map_choice = frame_labels, ipairs, lane, pairs, parse_map_choice
+local parse_profile_choice, refused_registers, register_at = parse_profile_choice, refused_registers, register_at
+local remember_list, remember_mask, remember_writes, say = remember_list, remember_mask, remember_writes, say
+local select, span_label, track, trusted_request, verified = select, span_label, track, trusted_request, verified
+local words_at = words_at
 
 -- The codes whose echo confirms masks applied to the value held ([confirm] "mask": FC22).
 local MASK_WRITES = DATA.rules.by_confirm.mask
@@ -8341,17 +8324,6 @@ end
 -- ---------------------------------------------------------------------------------------------------
 -- One record: frame it, pair and decode every frame, in order. Pure Lua: the Wireshark glue below and
 -- the standalone tests both call it.
-local unpack = table.unpack
-
--- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
-local function string_of(b, first, count)
-  local parts = {}
-  for k = 0, count - 1, 200 do -- (200 at a time: unpack puts them on the stack, string.char's arguments)
-    parts[#parts + 1] = string.char(unpack(b, first + k, first + math.min(k + 200, count) - 1))
-  end
-  return concat(parts)
-end
-
 local function new_state(timeout, mode)
   -- timeout: seconds after which a response is flagged as late (nil: never), as vw3-decode --timeout.
   -- mode: "rtu" or "ascii"; nil: chosen from the first record's bytes, as vw3-decode does.
@@ -8401,7 +8373,7 @@ local function register_view(st, f, run, b, index)
   return view
 end
 M.annotate_with, M.configure, M.inferred_registers = annotate_with, configure, inferred_registers
-M.new_state, M.register_view, M.string_of = new_state, register_view, string_of
+M.new_state, M.register_view = new_state, register_view
 end
 
 -- ---- vw3.pack: lua/src/pack.lua ----

@@ -18,8 +18,10 @@ from typing import Any
 
 from dissector.codegen import fields_lua
 from dissector.codegen.lua import lua_literal as scalar_literal
+from dissector.decode import fields
 from dissector.model import Kind
 from dissector.protocol import table
+from dissector.protocol.printable import bytes_text
 from dissector.protocol.rules import CONFIRM, LIFTS, TEXTS, Check, Confirm, Lift, params, text
 from dissector.protocol.shapes import PARTS, SHAPES, Field
 from dissector.protocol.spec import SPEC
@@ -184,6 +186,10 @@ def rules_data() -> dict[str, Any]:
         "diagnostic_data": {sub: _diagnostic_data(rule) for sub, rule in sorted(SPEC.diagnostic_data.items())},
         # The FC8 sub-functions whose answer repeats the request's data ([diagnostic_answers], fields._diagnostics).
         "diagnostic_echoes": SPEC.diagnostic_echoes,
+        # A device object's byte as its value's text shows it (printable.bytes_text), and the objects an FC43/14
+        # answer without any lacks (fields._MANDATORY_OBJECTS).
+        "byte_text": {byte: bytes_text(bytes([byte])) for byte in range(256)},
+        "mandatory_objects": fields._MANDATORY_OBJECTS,
     }
 
 

@@ -96,17 +96,6 @@ end
 -- ---------------------------------------------------------------------------------------------------
 -- One record: frame it, pair and decode every frame, in order. Pure Lua: the Wireshark glue below and
 -- the standalone tests both call it.
-local unpack = table.unpack
-
--- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
-local function string_of(b, first, count)
-  local parts = {}
-  for k = 0, count - 1, 200 do -- (200 at a time: unpack puts them on the stack, string.char's arguments)
-    parts[#parts + 1] = string.char(unpack(b, first + k, first + math.min(k + 200, count) - 1))
-  end
-  return concat(parts)
-end
-
 local function new_state(timeout, mode)
   -- timeout: seconds after which a response is flagged as late (nil: never), as vw3-decode --timeout.
   -- mode: "rtu" or "ascii"; nil: chosen from the first record's bytes, as vw3-decode does.

@@ -12,19 +12,9 @@ local EXCEPTIONS = DATA.exceptions or {}
 local DIAGNOSTICS = DATA.diagnostics or {}
 local LIMITS = RULES.limits
 local NOT_BROADCAST = DATA.not_broadcast or {}
--- FC43's mandatory objects by name (RULES.limits.device_id_mandatory): `VendorName, ProductCode, ...`
-local MANDATORY_OBJECTS = {}
-for id = LIMITS.device_id_mandatory[1], LIMITS.device_id_mandatory[2] do
-  MANDATORY_OBJECTS[#MANDATORY_OBJECTS + 1] = DATA.device_id_objects[id]
-end
-MANDATORY_OBJECTS = table.concat(MANDATORY_OBJECTS, ", ")
--- A device object's byte as in a Python bytes literal between single quotes (printable.py _BYTE_TEXT):
--- printable ASCII itself, \' and \\, \t \n \r, every other byte \xNN (never a control character).
-local BYTE_TEXT = {}
-for byte = 0, 255 do
-  BYTE_TEXT[byte] = byte >= 32 and byte < 127 and string.char(byte) or format("\\x%02x", byte)
-end
-BYTE_TEXT[39], BYTE_TEXT[92], BYTE_TEXT[9], BYTE_TEXT[10], BYTE_TEXT[13] = "\\'", "\\\\", "\\t", "\\n", "\\r"
+-- FC43's mandatory objects by name (`VendorName, ProductCode, ...`), and a device object's byte as in a Python
+-- bytes literal between single quotes (never a control character): RULES.mandatory_objects, RULES.byte_text.
+local MANDATORY_OBJECTS, BYTE_TEXT = RULES.mandatory_objects, RULES.byte_text
 
 -- A catalogue entry's text (format, params; repr: the parameters Python writes as `!r`, shown by `quote`)
 -- with its parameters by name, as Python fills them in: the texts here and maps.py's MESSAGES alike.
@@ -57,6 +47,27 @@ local function u16(b, k) return b[k] * 256 + b[k + 1] end
 local function warn(frame, text)
   local warnings = frame.warnings
   if warnings == nil then frame.warnings = { text } else warnings[#warnings + 1] = text end
+end
+
+local function note(f, text)
+  local notes = f.notes
+  if notes == nil then f.notes = { text } else notes[#notes + 1] = text end
+end
+
+-- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
+local function string_of(b, first, count)
+  local parts = {}
+  for k = 0, count - 1, 200 do -- (200 at a time: unpack puts them on the stack, string.char's arguments)
+    parts[#parts + 1] = string.char(table.unpack(b, first + k, first + math.min(k + 200, count) - 1))
+  end
+  return concat(parts)
+end
+
+-- Bytes b[first .. last] in hex, each by `pattern` (%02x, %02X), joined by `gap`.
+local function hex_of(b, first, last, pattern, gap)
+  local out = {}
+  for k = first, last do out[#out + 1] = format(pattern, b[k]) end
+  return concat(out, gap)
 end
 
 -- Does the frame tell the parameters anything (devices/memory.py)? Not one that failed its check (the
@@ -134,16 +145,11 @@ local function range_text(what, value, low, high)
   return say("range", { what = what, value = value, low = low, high = high })
 end
 
--- The data bytes after the function code (after `skip` more: FC8's sub-function), as a string.
-local function data_bytes_of(f, b, skip)
-  return string.char(table.unpack(b, f.data_at + skip, f.data_at + f.data_len - 1))
-end
-
 -- An answer that repeats its request's data whole (FC21's; from `skip`: an FC8 sub-function's,
 -- [diagnostic_answers]): a request keeps them as a string (its byte table is dropped before its answer comes);
 -- an answer that differs answered other data (fields._diagnostics, _check_echo).
 local function check_data_echo(f, b, request, skip)
-  local data = data_bytes_of(f, b, skip)
+  local data = string_of(b, f.data_at + skip, f.data_len - skip)
   if f.kind == REQUEST then
     f.fields.echoed = data
   elseif request ~= nil and request.fields ~= nil and request.fields.echoed ~= data then
@@ -170,9 +176,7 @@ end
 -- A write's words past its quantity (fields.py _past_quantity), `size` bytes at b[at]: no register written,
 -- warned by their bytes (the text `key`).
 local function past_quantity(f, b, at, size, quantity, key)
-  local hex = {}
-  for k = at, at + size - 1 do hex[#hex + 1] = format("%02x", b[k]) end
-  warn(f, say(key, { count = size, quantity = quantity, data = concat(hex, " ") }))
+  warn(f, say(key, { count = size, quantity = quantity, data = hex_of(b, at, at + size - 1, "%02x", " ") }))
 end
 
 -- An FC8 request's data word as the spec has it for its sub-function (RULES.diagnostic_data, fields.py
@@ -191,19 +195,10 @@ local function diagnostic_data(f, b, subfunction, rule)
       or say("diagnostic_byte", { what = rule.character, code = code }))
   else
     -- (the data as sent, in hex; rule.allowed: the words the spec allows, or its character then 00)
-    local data = data_bytes_of(f, b, 2):gsub(".", function(byte) return format("%02X", byte:byte()) end)
+    local data = hex_of(b, at, f.data_at + f.data_len - 1, "%02X", "")
     warn(f, say("diagnostic_data", { data = data ~= "" and data or "(none)", subfunction = subfunction,
       allowed = rule.allowed }))
   end
-end
-
--- An FC17 answer's server id is device specific in length (fields.py _report_server_id_response): where is
--- the first byte from b[from] to b[last] that is a run indicator (00, FF) that may follow a longer id? (nil)
-local function run_indicator_after(b, from, last, names)
-  for k = from, last do
-    if names[b[k]] ~= nil then return k end
-  end
-  return nil
 end
 
 -- The FC8 sub-functions whose answer repeats the request's data ([diagnostic_answers]): a request's data are
@@ -257,14 +252,15 @@ local SPECIAL = {
     elseif run == nil then -- (byte count 1: the server id alone, the layout's ?(byte_count-1))
       warn(f, say("no_run_indicator", { count = count }))
     elseif names[run] == nil then
-      local first = f.data_at + 1 -- (the server id's first byte)
-      local ends = run_indicator_after(b, first + 1, f.data_at + count, names)
+      -- An FC17 answer's server id is device specific in length (fields.py _report_server_id_response): the
+      -- first byte after its first that is a run indicator (00, FF) may follow a longer id.
+      local first, ends = f.data_at + 1, nil -- (the server id's first byte)
+      for k = f.data_at + count, first + 1, -1 do ends = names[b[k]] ~= nil and k or ends end
       if ends == nil then
         warn(f, say("run_indicator", { value = run })) -- (OFF, ON: none where any length of server id puts it)
       else -- (the id runs to the first 00 or FF after its first byte: fields.py _report_server_id_response)
-        local text, hex = string.char(table.unpack(b, first, ends - 1)), {}
-        for k = first, ends - 1 do hex[#hex + 1] = format("%02X", b[k]) end
-        local shown = text:find("[^ -~]") and concat(hex, " ") or python_repr(text)
+        local text = string_of(b, first, ends - first)
+        local shown = text:find("[^ -~]") and hex_of(b, first, ends - 1, "%02X", " ") or python_repr(text)
         warn(f, say("longer_server_id", { value = run, server_id = shown, run = names[b[ends]] }))
       end
     end
@@ -317,8 +313,7 @@ local function decode_frame(f)
   if request ~= nil and not verified(request) and WINDOW_ASKED[f.fn] then
     -- Its request failed its check (annotate_with kept none of its fields): no addresses
     -- (decode/fields.py lifter, pairing.py trusted_request).
-    local text, notes = say("request_damaged", { check = f.ascii and "LRC" or "CRC" }), f.notes
-    if notes == nil then f.notes = { text } else notes[#notes + 1] = text end
+    note(f, say("request_damaged", { check = f.ascii and "LRC" or "CRC" }))
   end
   if used < len then warn(f, say("trailing", { count = len - used })) end
   if f.broadcast and NOT_BROADCAST[f.fn] then

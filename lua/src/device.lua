@@ -124,11 +124,6 @@ local function device_of(st, f)
   return device_for(st, f.slave)
 end
 
-local function note(f, text)
-  local notes = f.notes
-  if notes == nil then f.notes = { text } else notes[#notes + 1] = text end
-end
-
 local function has_note(f, text)
   for _, existing in ipairs(f.notes or NO_INTERPRETATION) do
     if existing == text then return true end

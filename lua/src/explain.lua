@@ -4,6 +4,17 @@
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
+-- Each quantity request f's lifting rule checks (FC23: read and write, as the spec's checks name them) with
+-- the device's limit for it (nil: none): judge(f, profile, what, quantity, limit) until one returns true.
+local function quantities(f, profile, limits, judge)
+  local rule = LIFT_OF[REQUEST][f.fn]
+  if rule == nil or rule.write_window == nil then return judge(f, profile, "quantity", f.quantity, limits[1]) end
+  for index, check in ipairs(f.fields and rule.checks or NO_INTERPRETATION) do
+    if judge(f, profile, check.what, f.fields[check.field], limits[index]) then return true end
+  end
+  return false
+end
+
 -- A quantity above the device's limit for the function (limit: nil when the device gives none). (Here a
 -- function is named as its frame shows it: f.function_text, the profile's name annotate_with set, or the spec's.)
 local function check_limit(f, profile, what, quantity, limit)
@@ -25,18 +36,7 @@ local function check_request(f, device)
     warn(f, say("subfunction_not_supported", { subfunction = sub, name = DATA.diagnostics[sub], device = profile.device }))
   end
   local limits = profile.limits[code]
-  if limits ~= nil then
-    -- (no tables: this runs for every request)
-    local rule = LIFT_OF[REQUEST][code]
-    if rule == nil or rule.write_window == nil then
-      check_limit(f, profile, "quantity", f.quantity, limits[1])
-    elseif f.fields ~= nil then
-      -- read and write quantities (FC23): as the spec's checks of the lifting rule name them
-      for index, check in ipairs(rule.checks) do
-        check_limit(f, profile, check.what, f.fields[check.field], limits[index])
-      end
-    end
-  end
+  if limits ~= nil then quantities(f, profile, limits, check_limit) end
   -- (decode_frame already warned where the spec's own rule forbids the broadcast)
   if f.broadcast and profile.broadcast ~= nil and not profile.broadcast[code] and not NOT_BROADCAST[code] then
     warn(f, say("device_broadcast", { name = f.function_text or function_name(code), device = profile.device,
@@ -77,22 +77,16 @@ local function check_writes(f, device)
   end
 end
 
-local function outside(quantity, limit)
+local function outside(_, _, _, quantity, limit)
   return limit ~= nil and quantity ~= nil and not (quantity >= 1 and quantity <= limit)
 end
 
 local function holds(when, request, profile)
   local fields = request.fields
   if when == "quantity" then
-    -- Every quantity the request's lifting rule checks (FC23: read and write, as check_request warns of
-    -- them), each against the device's limit for it (without one, a read's READ_LIMIT): explain._holds
-    local limits = profile.limits[request.fn] or { READ_LIMIT }
-    local rule = LIFT_OF[REQUEST][request.fn]
-    if rule == nil or rule.write_window == nil or fields == nil then return outside(request.quantity, limits[1]) end
-    for index, check in ipairs(rule.checks) do
-      if outside(fields[check.field], limits[index]) then return true end
-    end
-    return false
+    -- Every quantity the request's lifting rule checks (as check_request warns of them) outside the device's
+    -- limit for it (without one, a read's READ_LIMIT): explain._holds
+    return quantities(request, profile, profile.limits[request.fn] or { READ_LIMIT }, outside)
   end
   return when == "byte_count" and fields ~= nil and fields.byte_count ~= nil and fields.quantity ~= nil
     and fields.byte_count ~= 2 * fields.quantity

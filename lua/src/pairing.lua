@@ -41,13 +41,8 @@ local function listening_since(st, slave)
   return since
 end
 
--- Follows the mode through request f; returns the 08/04 its slave was in the mode since (nil: not in it) and
--- f's sub-function (nil: not an intact FC8 request, which no slave acts on).
--- A slave taken to be in the mode answered (pairing.py _heard): it is not in it; its request's note goes.
-local function heard(st, request, answer)
-  local slave = request.slave
-  local since = listening_since(st, slave)
-  if not since then return end -- (the 08/01 that ended the mode: already out of it)
+-- The slave leaves the mode (a broadcast 08/04 keeps the others in it).
+local function leave(st, slave)
   local listening = st.listening
   if st.listening_all ~= nil then
     listening[slave] = false
@@ -55,6 +50,16 @@ local function heard(st, request, answer)
     listening[slave] = nil
     if next(listening) == nil then st.listening = nil end
   end
+end
+
+-- Follows the mode through request f; returns the 08/04 its slave was in the mode since (nil: not in it) and
+-- f's sub-function (nil: not an intact FC8 request, which no slave acts on).
+-- A slave taken to be in the mode answered (pairing.py _heard): it is not in it; its request's note goes.
+local function heard(st, request, answer)
+  local slave = request.slave
+  local since = listening_since(st, slave)
+  if not since then return end -- (the 08/01 that ended the mode: already out of it)
+  leave(st, slave)
   local values = { slave = slave, number = since.number, how = since.slave == 0 and LISTEN_ONLY_BROADCAST or "" }
   local said, notes, kept = say("listen_only", values), request.notes or {}, {}
   for index = 1, #notes do
@@ -80,11 +85,8 @@ local function listen_only(st, f)
     elseif sub == SUB_RESTART and listening ~= nil then
       if slave == 0 then
         st.listening, st.listening_all = nil, nil
-      elseif st.listening_all ~= nil then
-        listening[slave] = false
       else
-        listening[slave] = nil
-        if next(listening) == nil then st.listening = nil end
+        leave(st, slave)
       end
     end
   end
@@ -112,11 +114,13 @@ local function sent_key(f)
   return value * 65536 + f.crc
 end
 
--- Are the bytes of `f` (its byte table at hand) those of `request` (same slave and function)? A request
+-- Are the bytes of `f` (its byte table at hand) those of `request`, its slave and function included? A request
 -- whose byte table has gone: what stands for them (sent_key), else (a request not kept) a longer one's length
 -- and good CRC.
 local function same_bytes(st, request, f)
-  if request.length ~= f.length or request.crc ~= f.crc then return false end
+  if request.slave ~= f.slave or request.fn ~= f.fn or request.length ~= f.length or request.crc ~= f.crc then
+    return false
+  end
   local a, b = request.b, f.b
   if a == nil then
     if st.sent_for == request then return st.sent == sent_key(f) end
@@ -157,9 +161,11 @@ local function same_echo(request, f)
   return asked:sub(1, both) == got:sub(1, both)
 end
 
--- Does a normal answer repeat what the spec has it repeat of its request (pairing.py _echoes)?
-local function echoes(request, answer)
-  return answer.kind ~= RESPONSE or same_echo(request, answer)
+-- Does `answer` answer `request` (nil: none): its slave and function, and a normal answer repeats what the
+-- spec has it repeat of its request (pairing.py _echoes)?
+local function answers(request, answer)
+  return request ~= nil and request.slave == answer.slave and request.fn == answer.fn
+    and (answer.kind ~= RESPONSE or same_echo(request, answer))
 end
 
 -- Would the framer, awaiting `request`'s answer, read `f` as it (rules.py Awaiting._awaited)?
@@ -201,20 +207,14 @@ local function pair(st, f)
       f.kind = REQUEST
       if answered(st, f) then st.retried = f end
     end
-    if f.kind == RESPONSE and late ~= nil and late.slave == f.slave and late.fn == f.fn and same_bytes(st, late, f) then
-      -- The request again, past the timeout: the master's retry. (The framer read it as an answer and awaits
-      -- nothing, unless it read it as a request: flipped.)
-      f.kind, late = REQUEST, nil
-      st.echoed = nil
+    -- The request again, past the timeout (late: the master's retry), or to a slave in Listen Only Mode, which
+    -- answers nothing, the 08/01 that ends the mode included (the master's repeat). (The framer read it as an
+    -- answer and awaits nothing, unless it read it as a request: flipped. Never both: late leaves no pending.)
+    local again = late or not flipped and pending ~= nil and pending.unheard and pending
+    if f.kind == RESPONSE and again and same_bytes(st, again, f) then
+      f.kind, st.echoed = REQUEST, nil
+      if again == late then late = nil end
       if answered(st, f) and not flipped then st.retried = f end
-    end
-    if not flipped and f.kind == RESPONSE and pending ~= nil and pending.unheard and pending.slave == f.slave
-        and pending.fn == f.fn and same_bytes(st, pending, f) then
-      -- A slave in Listen Only Mode answers nothing, the 08/01 that ends the mode included: the request again is
-      -- the master's repeat. (The framer read it as an answer and awaits nothing.)
-      f.kind = REQUEST
-      st.echoed = nil
-      if answered(st, f) then st.retried = f end
     end
   end
   if f.kind == REQUEST then
@@ -240,7 +240,7 @@ local function pair(st, f)
     end
     return
   end
-  if pending ~= nil and pending.slave == f.slave and pending.fn == f.fn and echoes(pending, f) then
+  if answers(pending, f) then
     local listening = st.listening
     if listening ~= nil and f.kind == EXCEPTION and listening[f.slave] == pending then
       listening[f.slave] = nil -- (it refused the 08/04: not in the mode)
@@ -254,7 +254,7 @@ local function pair(st, f)
     if f.time ~= nil and pending.time ~= nil and f.time < pending.time then
       warn(f, say("backwards", { ahead_ms = (pending.time - f.time) / NS * 1000, number = pending.number }))
     end
-  elseif late ~= nil and late.slave == f.slave and late.fn == f.fn and echoes(late, f) then
+  elseif answers(late, f) then
     warn(f, say("late", { delay_ms = (f.time - late.time) / NS * 1000, number = late.number,
       timeout_ms = timeout * 1000 }))
   else

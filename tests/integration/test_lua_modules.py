@@ -146,7 +146,7 @@ def test_check_fails_when_vw3_lua_is_not_the_assembly(tmp_path: Path, capsys: py
 def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """After a module's `local _ENV = M`, the generator binds as locals what it uses of the earlier modules'
     exports and of the globals (the pairing module: DATA and next; EXCEPTION, REQUEST and RESPONSE from
-    layouts; awaits_answer from stream; release_run, say and warn from decode);
+    layouts; awaits_answer from stream; note, release_run, say, string_of and warn from decode);
     at its end it exports the module's top-level locals a later module names (pairing's pair, which records
     calls, and ended, which show calls; not layouts' `select`, a length rule's maker, which would hide Lua's select from the later modules),
     besides the module's own export lines; and refuses a module that assigns such a name or an export line
@@ -156,7 +156,7 @@ def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytes
     assert pairing.split("\n")[4:7] == [
         "local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)",
         "local DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer",
-        "local next, release_run, say, warn = next, release_run, say, warn"]
+        "local next, note, release_run, say, string_of, warn = next, note, release_run, say, string_of, warn"]
     assert pairing.split("\nend\n\n-- ---- vw3.")[0].endswith("\nM.ended, M.pair = ended, pair")
     assert "M.pair" not in (SRC / "pairing.lua").read_text(encoding="utf-8")
     layouts = plugin.split('package.preload["vw3.layouts"] = function(...)\n')[1].split("\nend\n\n-- ---- vw3.")[0]
