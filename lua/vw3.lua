@@ -6089,6 +6089,7 @@ end
 
 -- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
 local function string_of(b, first, count)
+  if count <= 200 then return string.char(table.unpack(b, first, first + count - 1)) end
   local parts = {}
   for k = 0, count - 1, 200 do -- (200 at a time: unpack puts them on the stack, string.char's arguments)
     parts[#parts + 1] = string.char(table.unpack(b, first + k, first + math.min(k + 200, count) - 1))
@@ -6369,11 +6370,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer
 local next, note, release_run, say, string_of, warn = next, note, release_run, say, string_of, warn
-local UNMATCHED, BROADCAST_ADDRESS = say("unmatched", {}), say("broadcast_address", {})
-local NEVER_ANSWERED_NOTE = say("never_answered", {})
-local CAPTURE_ENDS_UNKNOWN = say("capture_ends_unknown", {})
+local PLAIN = DATA.plain_texts -- (the catalogue's texts without parameters: unmatched, never_answered, ...)
 local ECHO = DATA.pairing.echo
-local LISTEN_ONLY_BROADCAST = say("listen_only_broadcast", {})
 -- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once, as
 -- vw3-decode's Stamps subtract (model.py Stamp.__sub__): the same doubles, the same digits in the texts.
 local NS = 1e9
@@ -6426,7 +6424,7 @@ local function heard(st, request, answer)
   local since = listening_since(st, slave)
   if not since then return end -- (the 08/01 that ended the mode: already out of it)
   leave(st, slave)
-  local values = { slave = slave, number = since.number, how = since.slave == 0 and LISTEN_ONLY_BROADCAST or "" }
+  local values = { slave = slave, number = since.number, how = since.slave == 0 and PLAIN.listen_only_broadcast or "" }
   local said, notes, kept = say("listen_only", values), request.notes or {}, {}
   for index = 1, #notes do
     if notes[index] ~= said then kept[#kept + 1] = notes[index] end
@@ -6594,10 +6592,10 @@ local function pair(st, f)
       st.broadcast = nil
       if since ~= nil then
         note(f, say(sub == SUB_RESTART and "listen_only_ends" or "listen_only",
-          { slave = f.slave, number = since.number, how = since.slave == 0 and LISTEN_ONLY_BROADCAST or "" }))
+          { slave = f.slave, number = since.number, how = since.slave == 0 and PLAIN.listen_only_broadcast or "" }))
         f.answerless, f.unheard = true, true
       elseif not awaits_answer(f) then
-        note(f, NEVER_ANSWERED_NOTE)
+        note(f, PLAIN.never_answered)
         f.answerless = true
       end
       if ECHO[f.fn] ~= nil then f.echoed = echoed(f) end
@@ -6630,8 +6628,8 @@ local function pair(st, f)
     if f.slave == 0 and broadcast ~= nil and broadcast.fn == f.fn then
       warn(f, say("broadcast_answered", { number = broadcast.number }))
     else
-      if f.slave == 0 then warn(f, BROADCAST_ADDRESS) end
-      note(f, UNMATCHED)
+      if f.slave == 0 then warn(f, PLAIN.broadcast_address) end
+      note(f, PLAIN.unmatched)
     end
   end
 end
@@ -6648,7 +6646,7 @@ local function ended(st, f)
   local waited = last and f.time and (last - f.time) / NS or nil
   if timeout ~= nil and waited ~= nil and waited > timeout then return true, cut end
   if cut ~= nil then return false, cut end
-  if timeout == nil or waited == nil or waited <= 0 then return false, CAPTURE_ENDS_UNKNOWN end
+  if timeout == nil or waited == nil or waited <= 0 then return false, PLAIN.capture_ends_unknown end
   return false, say("capture_ends_within", { waited_ms = waited * 1000, timeout_ms = timeout * 1000 })
 end
 M.ended, M.pair = ended, pair
@@ -7875,7 +7873,7 @@ local FALLBACK = SELECTION.fallback
 -- Does the slave's current choice not support function fn (an answer to it takes the choice back)?
 local function unsupported(current, fn)
   local functions = PROFILES[current.profile].functions
-  return current.profile ~= SELECTION.fallback and functions ~= nil and not functions[fn]
+  return current.profile ~= FALLBACK and functions ~= nil and not functions[fn]
 end
 
 local function settled(judged)
@@ -7999,15 +7997,13 @@ local function observe(st, f, b)
   end
   if f.kind ~= RESPONSE or f.crc ~= f.crc_expected then return nil end
   judged.answers = judged.answers + 1
-  if current ~= nil and current.profile ~= SELECTION.fallback then
-    if unsupported(current, f.fn) then
-      judged.choice = { profile = SELECTION.fallback, final = false, reason = say("chosen_unsupported",
-        { ["function"] = f.fn, frame = f.number, device = PROFILES[current.profile].device }) }
-      -- (the device taken back is ruled out; the others are judged on, while the slave is)
-      judged.ruled_out[current.profile], judged.evidence[current.profile] = true, nil
-      return judged.choice
-    end
-    return nil
+  if current ~= nil and current.profile ~= FALLBACK then
+    if not unsupported(current, f.fn) then return nil end
+    judged.choice = { profile = FALLBACK, final = false, reason = say("chosen_unsupported",
+      { ["function"] = f.fn, frame = f.number, device = PROFILES[current.profile].device }) }
+    -- (the device taken back is ruled out; the others are judged on, while the slave is)
+    judged.ruled_out[current.profile], judged.evidence[current.profile] = true, nil
+    return judged.choice
   end
   if not judging then return nil end
   -- Selector._weigh: what this answer says of each candidate; a choice when one alone has enough.
@@ -8156,7 +8152,7 @@ end
 -- profile reason says so; slaves of different devices, or one met without a device, leave it spec
 -- semantics, and a note says why.
 local function broadcast_device(st, f)
-  local fallback, named, slaves = SELECTION.fallback, {}, {}
+  local fallback, named, slaves = FALLBACK, {}, {}
   -- (the slaves with a device, forced or chosen so far; then those met without one: unknown)
   for pass, source in ipairs({ config.per_slave, st.chosen, st.met or {}, st.judged }) do
     for slave, name in pairs(source) do

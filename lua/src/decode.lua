@@ -56,6 +56,7 @@ end
 
 -- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
 local function string_of(b, first, count)
+  if count <= 200 then return string.char(table.unpack(b, first, first + count - 1)) end
   local parts = {}
   for k = 0, count - 1, 200 do -- (200 at a time: unpack puts them on the stack, string.char's arguments)
     parts[#parts + 1] = string.char(table.unpack(b, first + k, first + math.min(k + 200, count) - 1))

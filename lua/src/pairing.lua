@@ -3,11 +3,8 @@
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pairing"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local UNMATCHED, BROADCAST_ADDRESS = say("unmatched", {}), say("broadcast_address", {})
-local NEVER_ANSWERED_NOTE = say("never_answered", {})
-local CAPTURE_ENDS_UNKNOWN = say("capture_ends_unknown", {})
+local PLAIN = DATA.plain_texts -- (the catalogue's texts without parameters: unmatched, never_answered, ...)
 local ECHO = DATA.pairing.echo
-local LISTEN_ONLY_BROADCAST = say("listen_only_broadcast", {})
 -- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once, as
 -- vw3-decode's Stamps subtract (model.py Stamp.__sub__): the same doubles, the same digits in the texts.
 local NS = 1e9
@@ -60,7 +57,7 @@ local function heard(st, request, answer)
   local since = listening_since(st, slave)
   if not since then return end -- (the 08/01 that ended the mode: already out of it)
   leave(st, slave)
-  local values = { slave = slave, number = since.number, how = since.slave == 0 and LISTEN_ONLY_BROADCAST or "" }
+  local values = { slave = slave, number = since.number, how = since.slave == 0 and PLAIN.listen_only_broadcast or "" }
   local said, notes, kept = say("listen_only", values), request.notes or {}, {}
   for index = 1, #notes do
     if notes[index] ~= said then kept[#kept + 1] = notes[index] end
@@ -228,10 +225,10 @@ local function pair(st, f)
       st.broadcast = nil
       if since ~= nil then
         note(f, say(sub == SUB_RESTART and "listen_only_ends" or "listen_only",
-          { slave = f.slave, number = since.number, how = since.slave == 0 and LISTEN_ONLY_BROADCAST or "" }))
+          { slave = f.slave, number = since.number, how = since.slave == 0 and PLAIN.listen_only_broadcast or "" }))
         f.answerless, f.unheard = true, true
       elseif not awaits_answer(f) then
-        note(f, NEVER_ANSWERED_NOTE)
+        note(f, PLAIN.never_answered)
         f.answerless = true
       end
       if ECHO[f.fn] ~= nil then f.echoed = echoed(f) end
@@ -264,8 +261,8 @@ local function pair(st, f)
     if f.slave == 0 and broadcast ~= nil and broadcast.fn == f.fn then
       warn(f, say("broadcast_answered", { number = broadcast.number }))
     else
-      if f.slave == 0 then warn(f, BROADCAST_ADDRESS) end
-      note(f, UNMATCHED)
+      if f.slave == 0 then warn(f, PLAIN.broadcast_address) end
+      note(f, PLAIN.unmatched)
     end
   end
 end
@@ -282,6 +279,6 @@ local function ended(st, f)
   local waited = last and f.time and (last - f.time) / NS or nil
   if timeout ~= nil and waited ~= nil and waited > timeout then return true, cut end
   if cut ~= nil then return false, cut end
-  if timeout == nil or waited == nil or waited <= 0 then return false, CAPTURE_ENDS_UNKNOWN end
+  if timeout == nil or waited == nil or waited <= 0 then return false, PLAIN.capture_ends_unknown end
   return false, say("capture_ends_within", { waited_ms = waited * 1000, timeout_ms = timeout * 1000 })
 end

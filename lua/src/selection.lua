@@ -21,7 +21,7 @@ local FALLBACK = SELECTION.fallback
 -- Does the slave's current choice not support function fn (an answer to it takes the choice back)?
 local function unsupported(current, fn)
   local functions = PROFILES[current.profile].functions
-  return current.profile ~= SELECTION.fallback and functions ~= nil and not functions[fn]
+  return current.profile ~= FALLBACK and functions ~= nil and not functions[fn]
 end
 
 local function settled(judged)
@@ -145,15 +145,13 @@ local function observe(st, f, b)
   end
   if f.kind ~= RESPONSE or f.crc ~= f.crc_expected then return nil end
   judged.answers = judged.answers + 1
-  if current ~= nil and current.profile ~= SELECTION.fallback then
-    if unsupported(current, f.fn) then
-      judged.choice = { profile = SELECTION.fallback, final = false, reason = say("chosen_unsupported",
-        { ["function"] = f.fn, frame = f.number, device = PROFILES[current.profile].device }) }
-      -- (the device taken back is ruled out; the others are judged on, while the slave is)
-      judged.ruled_out[current.profile], judged.evidence[current.profile] = true, nil
-      return judged.choice
-    end
-    return nil
+  if current ~= nil and current.profile ~= FALLBACK then
+    if not unsupported(current, f.fn) then return nil end
+    judged.choice = { profile = FALLBACK, final = false, reason = say("chosen_unsupported",
+      { ["function"] = f.fn, frame = f.number, device = PROFILES[current.profile].device }) }
+    -- (the device taken back is ruled out; the others are judged on, while the slave is)
+    judged.ruled_out[current.profile], judged.evidence[current.profile] = true, nil
+    return judged.choice
   end
   if not judging then return nil end
   -- Selector._weigh: what this answer says of each candidate; a choice when one alone has enough.
@@ -302,7 +300,7 @@ end
 -- profile reason says so; slaves of different devices, or one met without a device, leave it spec
 -- semantics, and a note says why.
 local function broadcast_device(st, f)
-  local fallback, named, slaves = SELECTION.fallback, {}, {}
+  local fallback, named, slaves = FALLBACK, {}, {}
   -- (the slaves with a device, forced or chosen so far; then those met without one: unknown)
   for pass, source in ipairs({ config.per_slave, st.chosen, st.met or {}, st.judged }) do
     for slave, name in pairs(source) do
