@@ -7594,19 +7594,22 @@ package.preload["vw3.explain"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.explain"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, LIFT_OF, NOT_BROADCAST, NO_INTERPRETATION = DATA, LIFT_OF, NOT_BROADCAST, NO_INTERPRETATION
-local PLAIN_READS, PLC_LABELS, READS, READ_LIMIT, REQUEST = PLAIN_READS, PLC_LABELS, READS, READ_LIMIT, REQUEST
-local RESPONSE, address_name, address_runs, concat = RESPONSE, address_name, address_runs, concat
-local consecutive, format, function_name, ipairs, lane = consecutive, format, function_name, ipairs, lane
-local math, next, note, plc_base, say, span_name, story = math, next, note, plc_base, say, span_name, story
-local tonumber, track, trusted_request, u16, verified, warn = tonumber, track, trusted_request, u16, verified, warn
+local DATA, LIFT_OF, NOT_BROADCAST, PLAIN_READS, PLC_LABELS = DATA, LIFT_OF, NOT_BROADCAST, PLAIN_READS, PLC_LABELS
+local READS, READ_LIMIT, REQUEST, RESPONSE, address_name = READS, READ_LIMIT, REQUEST, RESPONSE, address_name
+local address_runs, concat, consecutive, format = address_runs, concat, consecutive, format
+local function_name, ipairs, lane, math, next, note = function_name, ipairs, lane, math, next, note
+local plc_base, say, span_name, story, tonumber, track = plc_base, say, span_name, story, tonumber, track
+local trusted_request, u16, verified, warn = trusted_request, u16, verified, warn
 
--- Each quantity request f's lifting rule checks (FC23: read and write, as the spec's checks name them) with
--- the device's limit for it (nil: none): judge(f, profile, what, quantity, limit) until one returns true.
+-- Each quantity request f's lifting rule checks (FC23: read and write, as the spec's checks name them; without
+-- its fields, as vw3_modbus.lua remembers a request, its quantity) with the device's limit for it (nil: none):
+-- judge(f, profile, what, quantity, limit) until one returns true.
 local function quantities(f, profile, limits, judge)
   local rule = LIFT_OF[REQUEST][f.fn]
-  if rule == nil or rule.write_window == nil then return judge(f, profile, "quantity", f.quantity, limits[1]) end
-  for index, check in ipairs(f.fields and rule.checks or NO_INTERPRETATION) do
+  if rule == nil or rule.write_window == nil or f.fields == nil then
+    return judge(f, profile, "quantity", f.quantity, limits[1])
+  end
+  for index, check in ipairs(rule.checks) do
     if judge(f, profile, check.what, f.fields[check.field], limits[index]) then return true end
   end
   return false

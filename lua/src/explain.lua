@@ -4,12 +4,15 @@
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
--- Each quantity request f's lifting rule checks (FC23: read and write, as the spec's checks name them) with
--- the device's limit for it (nil: none): judge(f, profile, what, quantity, limit) until one returns true.
+-- Each quantity request f's lifting rule checks (FC23: read and write, as the spec's checks name them; without
+-- its fields, as vw3_modbus.lua remembers a request, its quantity) with the device's limit for it (nil: none):
+-- judge(f, profile, what, quantity, limit) until one returns true.
 local function quantities(f, profile, limits, judge)
   local rule = LIFT_OF[REQUEST][f.fn]
-  if rule == nil or rule.write_window == nil then return judge(f, profile, "quantity", f.quantity, limits[1]) end
-  for index, check in ipairs(f.fields and rule.checks or NO_INTERPRETATION) do
+  if rule == nil or rule.write_window == nil or f.fields == nil then
+    return judge(f, profile, "quantity", f.quantity, limits[1])
+  end
+  for index, check in ipairs(rule.checks) do
     if judge(f, profile, check.what, f.fields[check.field], limits[index]) then return true end
   end
   return false
