@@ -4571,8 +4571,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, ECHO_CODES, FRAMING, MAX_ADU, MIN_ADU, NEED = DATA, ECHO_CODES, FRAMING, MAX_ADU, MIN_ADU, NEED
 local NOISE, NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo = NOISE, NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo
-local awaited, crc_string_ok, format, interpretations, math = awaited, crc_string_ok, format, interpretations, math
-local pairs, type = pairs, type
+local awaited, crc_string_ok, floor, format = awaited, crc_string_ok, floor, format
+local interpretations, math, pairs, type = interpretations, math, pairs, type
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request): a record that is the usual answer to the
@@ -4587,18 +4587,43 @@ local GLITCH = FRAMING.glitch_bytes
 -- s.n of them; s.base is the stream offset of s.b[0]. A record's end is a frame boundary (pcap records
 -- are chunks with boundary=True), yet it is no end of data: a frame cut by it waits for the next
 -- record, and the end of the capture (finish) decides what is still waiting.
+-- Record ends (s.boundaries) and silences (s.silences, found by feed) are ascending stream offsets, lists asked by
+-- bisection (framing/offsets.py Offsets), as are the record starts in s.times: a look-up through all of them made
+-- a capture of one-byte records (a USB tap, a line at the wrong speed) cost each byte the buffer's records, many
+-- times over. The index of the first entry of `list` above `value` (past the end: none); step 2: the entries at
+-- odd indices alone (s.times' offsets).
+local function first_above(list, value, step)
+  local low, high = 1, floor((#list + step - 1) / step) + 1 -- (entry numbers; the answer is in low .. high)
+  while low < high do
+    local mid = floor((low + high) / 2)
+    if list[mid * step - step + 1] > value then high = mid else low = mid + 1 end
+  end
+  return low * step - step + 1
+end
+
+-- The first offset of `list` after buffer index i, up to n (Offsets.first_after), as a buffer index; nil: none.
+local function first_after(s, list, i, n)
+  local at = list[first_above(list, s.base + i, 1)]
+  if at ~= nil and at - s.base <= n then return at - s.base end
+  return nil
+end
+
+-- Forget the first `count` entries of `list` (below the buffer's new base: Offsets.drop_below), moved down in place.
+local function drop_first(list, count)
+  if count <= 0 then return end
+  local length = #list
+  for index = count + 1, length do list[index - count] = list[index] end
+  for index = length, length - count + 1, -1 do list[index] = nil end
+end
+
 local function boundary_at(s, i)
-  return s.boundaries[s.base + i] == true
+  return first_after(s, s.boundaries, i - 1, i) == i
 end
 
 -- The stream offset's time: the time of the record its byte came in (stream.py _time_at). s.times
 -- holds (stream offset, time) pairs flat, oldest first, false for a record without a time.
 local function time_at(s, offset)
-  local times = s.times
-  for index = #times - 1, 1, -2 do
-    if times[index] <= offset then return times[index + 1] or nil end
-  end
-  return nil
+  return s.times[first_above(s.times, offset, 2) - 1] or nil
 end
 
 -- Bytes of the noise run being built are copied out of the buffer: the run may outlast the records
@@ -4657,7 +4682,7 @@ local function inner_gaps(s, frame)
   local stop, ascii = offset + frame.length, s.mode == "ascii"
   local char_time, limit = CHAR_TIME, T15
   if ascii then char_time, limit = ASCII_CHAR_TIME, TIMING.ascii_max_silence end
-  for index = 3, #times, 2 do
+  for index = math.max(3, first_above(times, offset, 2)), #times, 2 do -- (the records after its first)
     local start, time, before = times[index], times[index + 1], times[index - 1]
     if start >= stop then break end -- (oldest first)
     if start > offset and time and before then
@@ -4679,16 +4704,10 @@ local function silent_before(times, index)
   return time and before and (time - before) / NS - (times[index] - times[index - 2]) * CHAR_TIME >= T35
 end
 
--- The index of the first record after i, before n, that a silence of t3.5 comes before (stream.py _silences, as
--- add_noise finds them), nil: none.
+-- The index of the first record after i, before n, that a silence of t3.5 comes before (stream.py _silences), nil:
+-- none.
 local function silence_after(s, i, n)
-  local times, base = s.times, s.base
-  for index = 3, #times, 2 do
-    local at = times[index] - base
-    if at >= n then return nil end -- (oldest first)
-    if at > i and silent_before(times, index) then return at end
-  end
-  return nil
+  return first_after(s, s.silences, i, n - 1)
 end
 
 -- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
@@ -4704,14 +4723,11 @@ local function add_noise(s, start, stop, reason, items)
   local b = s.b
   -- Only glitch bytes since the last frame or boundary (stream.py _add_noise): the next start is anchored.
   if s.noise == nil and not s.noise_cut then s.glitches_only = true end
-  local check_from = start
-  local base = s.base
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at >= start and at < stop then
-      s.glitches_only = true
-      check_from = math.max(at, check_from)
-    end
+  local check_from, base, ends = start, s.base, s.boundaries
+  local last = ends[first_above(ends, base + stop - 1, 1) - 1] -- (the last record end inside the bytes)
+  if last ~= nil and last >= base + start then
+    s.glitches_only = true
+    check_from = last - base
   end
   if s.glitches_only then
     for k = check_from, stop - 1 do
@@ -4721,26 +4737,24 @@ local function add_noise(s, start, stop, reason, items)
       end
     end
   end
-  local times = s.times
-  if #times > 2 and s.mode ~= "ascii" then -- (ASCII allows a second's silence inside a frame: stream.py)
+  local silences = s.silences
+  if s.mode ~= "ascii" then -- (ASCII allows a second's silence inside a frame: stream.py)
     -- Records starting inside the bytes after a silence (stream.py feed, silence_before): the run stays one
     -- for the framer's decisions, its items are cut there (_add_noise).
-    for index = 3, #times, 2 do
-      local at = times[index] - base
+    for index = first_above(silences, base + start - 1, 1), #silences do
+      local at = silences[index] - base
       if at >= stop then break end -- (oldest first)
-      if at >= start and silent_before(times, index) then
-        if at > start then add_run(s, b, start, at, reason, items) end
-        local noise = s.noise
-        if noise ~= nil then
-          local parts = noise.parts
-          if parts == nil then
-            parts = {}
-            noise.parts = parts
-          end
-          parts[#parts + 1], parts[#parts + 2], parts[#parts + 3] = noise.length, reason, times[index + 1]
+      if at > start then add_run(s, b, start, at, reason, items) end
+      local noise = s.noise
+      if noise ~= nil then
+        local parts = noise.parts
+        if parts == nil then
+          parts = {}
+          noise.parts = parts
         end
-        start = at
+        parts[#parts + 1], parts[#parts + 2], parts[#parts + 3] = noise.length, reason, time_at(s, base + at)
       end
+      start = at
     end
   end
   add_run(s, b, start, stop, reason, items)
@@ -4932,11 +4946,8 @@ local function repeats(s, b, i, since, n, stop)
     end
   end
   if period == nil then return i, i + 4 * REPEAT_PROBE end
-  local first, limit, base = i - period, math.min(n, stop + REPEAT_WINDOW), s.base
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at >= first and at < limit then limit = at end
-  end
+  local limit = math.min(n, stop + REPEAT_WINDOW)
+  limit = first_after(s, s.boundaries, i - period - 1, limit - 1) or limit -- (none inside: evidence)
   local stop_at = i
   while stop_at < limit and b[stop_at] == b[stop_at - period] do stop_at = stop_at + 1 end
   local last = stop_at - REPEAT_WINDOW
@@ -4946,9 +4957,10 @@ local function repeats(s, b, i, since, n, stop)
 end
 M.GLITCH, M.REPEAT_PROBE, M.TOO_SHORT, M.add_noise = GLITCH, REPEAT_PROBE, TOO_SHORT, add_noise
 M.add_skipped, M.await_answer, M.awaited_reading = add_skipped, await_answer, awaited_reading
-M.awaits_answer, M.boundary_at, M.cut_reason, M.emit = awaits_answer, boundary_at, cut_reason, emit
-M.expect_after, M.flush_noise, M.lane, M.no_frame = expect_after, flush_noise, lane, no_frame
-M.not_the_answer, M.repeats, M.silence_after, M.time_at = not_the_answer, repeats, silence_after, time_at
+M.awaits_answer, M.boundary_at, M.cut_reason, M.drop_first = awaits_answer, boundary_at, cut_reason, drop_first
+M.emit, M.expect_after, M.first_above, M.first_after = emit, expect_after, first_above, first_after
+M.flush_noise, M.lane, M.no_frame, M.not_the_answer = flush_noise, lane, no_frame, not_the_answer
+M.repeats, M.silence_after, M.silent_before, M.time_at = repeats, silence_after, silent_before, time_at
 M.whole_crc_good = whole_crc_good
 end
 
@@ -4964,20 +4976,15 @@ local MIN_ADU, NEED, NOISE_ITEM_MAX, NONE = MIN_ADU, NEED, NOISE_ITEM_MAX, NONE
 local NO_INTERPRETATION, REPEAT_PROBE, REQUEST, RESPONSE = NO_INTERPRETATION, REPEAT_PROBE, REQUEST, RESPONSE
 local TOO_SHORT, add_noise, add_skipped, awaited = TOO_SHORT, add_noise, add_skipped, awaited
 local awaited_reading, boundary_at, crc16, crc_lengths = awaited_reading, boundary_at, crc16, crc_lengths
-local crc_ok_at, crc_scan, cut_reason, emit = crc_ok_at, crc_scan, cut_reason, emit
-local interpretations, math, no_frame, not_the_answer = interpretations, math, no_frame, not_the_answer
-local pairs, possible_start, repeats, scanned = pairs, possible_start, repeats, scanned
+local crc_ok_at, crc_scan, cut_reason, emit, first_above = crc_ok_at, crc_scan, cut_reason, emit, first_above
+local first_after, interpretations, math, no_frame = first_after, interpretations, math, no_frame
+local not_the_answer, possible_start, repeats, scanned = not_the_answer, possible_start, repeats, scanned
 local silence_after, table, time_at = silence_after, table, time_at
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 
--- The first boundary (a record's end, a silence) after i, up to n; nil: none there.
+-- The first record end after i, up to n; nil: none there.
 local function record_end(s, i, n)
-  local base, stop = s.base, nil
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at > i and at <= n and (stop == nil or at < stop) then stop = at end
-  end
-  return stop
+  return first_after(s, s.boundaries, i, n)
 end
 
 -- Does a layout at i check out and end where its record does (a code without a length rule: its CRC checks at
@@ -5000,17 +5007,28 @@ local function ends_record(s, b, i, n)
   return false
 end
 
+-- A record end's answer to ends_record, with the state it was given in (the stream's end, the answer awaited and
+-- its echo: stream.py _ends_memo): each CRC scan weighs the record ends ahead of it, asked again for every start.
+local ends_memo, ends_known = {}, 0
+
 -- Where a CRC scan from i stops (rtu.py _framed_reach): the first record after i that is a frame of its own, else
 -- n. A scan across it read noise and that frame as one frame, and waited for bytes past it in one pass.
 local function framed_reach(s, b, i, n)
-  local base, reach = s.base, n
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at > i and at < reach and at < i + MAX_ADU and n - at >= MIN_ADU and ends_record(s, b, at, n) then
-      reach = at
+  local base, ends = s.base, s.boundaries
+  local stop = base + math.min(n - MIN_ADU + 1, i + MAX_ADU)
+  if ends_known > 4 * MAX_ADU then ends_memo, ends_known = {}, 0 end
+  for index = first_above(ends, base + i, 1), #ends do -- (ascending: the first that is a frame of its own)
+    local offset = ends[index]
+    if offset >= stop then break end
+    local known = ends_memo[offset]
+    if known == nil or known[1] ~= s or known[2] ~= base + n or known[3] ~= s.expect or known[4] ~= s.echo then
+      known = { s, base + n, s.expect, s.echo, ends_record(s, b, offset - base, n) }
+      if ends_memo[offset] == nil then ends_known = ends_known + 1 end
+      ends_memo[offset] = known
     end
+    if known[5] then return offset - base end
   end
-  return reach
+  return n
 end
 
 -- Would a reading at i of `length` bytes (NEED: more than there are) swallow a record that is a frame of its own,
@@ -5069,11 +5087,8 @@ end
 
 -- Does a record start at i (stream.py _record_starts_at)? Every record's start is in s.times while its bytes are.
 local function record_start(s, i)
-  local at, times = s.base + i, s.times
-  for index = 1, #times, 2 do
-    if times[index] == at then return true end
-  end
-  return false
+  local times = s.times
+  return times[first_above(times, s.base + i - 1, 2)] == s.base + i
 end
 
 -- intact_inside, where records that are frames (a record that is this one, or the next one a frame: ends_record)
@@ -5901,10 +5916,10 @@ package.preload["vw3.feed"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.feed"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local MAX_ADU, MAX_SLAVE, MIN_ADU, expect_after = MAX_ADU, MAX_SLAVE, MIN_ADU, expect_after
-local fast_interpretation, flush_noise, interpretations = fast_interpretation, flush_noise, interpretations
-local lane, pairs, rtu_frame, run_ascii, run_rtu, string = lane, pairs, rtu_frame, run_ascii, run_rtu, string
-local whole_crc_good = whole_crc_good
+local MAX_ADU, MAX_SLAVE, MIN_ADU, drop_first, expect_after = MAX_ADU, MAX_SLAVE, MIN_ADU, drop_first, expect_after
+local fast_interpretation, first_above, flush_noise = fast_interpretation, first_above, flush_noise
+local interpretations, lane, rtu_frame, run_ascii, run_rtu = interpretations, lane, rtu_frame, run_ascii, run_rtu
+local silent_before, string, whole_crc_good = silent_before, string, whole_crc_good
 local feed
 local feed_whole
 
@@ -5924,23 +5939,13 @@ local function consume(s, count)
     s.b, s.n, s.base = rest, n - count, s.base + count
   end
   local base = s.base
-  local times = s.times
-  local count, keep = #times, 1
   -- (the record holding the base, or the one before a record starting there: the silence before that record
   -- is measured from it when its bytes join a noise run: add_noise)
-  for index = 1, count, 2 do
-    if times[index] < base then keep = index end
-  end
-  if keep > 1 then
-    -- (moved down in place: no new list)
-    local shift = keep - 1
-    for index = keep, count do times[index - shift] = times[index] end
-    for index = count, count - shift + 1, -1 do times[index] = nil end
-  end
+  local times = s.times
+  drop_first(times, first_above(times, base - 1, 2) - 3)
   -- (one at the new base still counts: the next run starts there, however the feeding went: stream.py)
-  for offset in pairs(s.boundaries) do
-    if offset < base then s.boundaries[offset] = nil end
-  end
+  drop_first(s.boundaries, first_above(s.boundaries, base - 1, 1) - 1)
+  drop_first(s.silences, first_above(s.silences, base - 1, 1) - 1)
 end
 
 -- Can a record of n bytes from `slave` be one whole frame where no byte waits (feed_whole, the quick lanes)?
@@ -5988,6 +5993,7 @@ end
 -- table when feed_whole made it.
 feed = function(s, bytes, time, boundary, final, built)
   local n = #bytes
+  if s.silences == nil then s.silences = {} end -- (vw3.annotator new_state makes the rest of the stream)
   if n > 0 then
     local b, at = s.b, s.n
     local byte = string.byte
@@ -6008,12 +6014,14 @@ feed = function(s, bytes, time, boundary, final, built)
       k = k + 8
     end
     for rest = k, n do b[at + rest - 1] = byte(bytes, rest) end
-    local times = s.times
+    local times, silences = s.times, s.silences
     local count = #times
     times[count + 1] = s.base + at
     if time == nil then times[count + 2] = false else times[count + 2] = time end
+    -- (a silence of t3.5 before the record: stream.py feed; a record is only ever added after the ones kept)
+    if count > 0 and silent_before(times, count + 1) then silences[#silences + 1] = s.base + at end
     s.n = at + n
-    if boundary then s.boundaries[s.base + s.n] = true end
+    if boundary then s.boundaries[#s.boundaries + 1] = s.base + s.n end
   end
   local items = s.items -- (one list a stream, emptied each time: its items are taken before the next feed)
   for index = #items, 1, -1 do items[index] = nil end

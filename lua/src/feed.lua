@@ -22,23 +22,13 @@ local function consume(s, count)
     s.b, s.n, s.base = rest, n - count, s.base + count
   end
   local base = s.base
-  local times = s.times
-  local count, keep = #times, 1
   -- (the record holding the base, or the one before a record starting there: the silence before that record
   -- is measured from it when its bytes join a noise run: add_noise)
-  for index = 1, count, 2 do
-    if times[index] < base then keep = index end
-  end
-  if keep > 1 then
-    -- (moved down in place: no new list)
-    local shift = keep - 1
-    for index = keep, count do times[index - shift] = times[index] end
-    for index = count, count - shift + 1, -1 do times[index] = nil end
-  end
+  local times = s.times
+  drop_first(times, first_above(times, base - 1, 2) - 3)
   -- (one at the new base still counts: the next run starts there, however the feeding went: stream.py)
-  for offset in pairs(s.boundaries) do
-    if offset < base then s.boundaries[offset] = nil end
-  end
+  drop_first(s.boundaries, first_above(s.boundaries, base - 1, 1) - 1)
+  drop_first(s.silences, first_above(s.silences, base - 1, 1) - 1)
 end
 
 -- Can a record of n bytes from `slave` be one whole frame where no byte waits (feed_whole, the quick lanes)?
@@ -86,6 +76,7 @@ end
 -- table when feed_whole made it.
 feed = function(s, bytes, time, boundary, final, built)
   local n = #bytes
+  if s.silences == nil then s.silences = {} end -- (vw3.annotator new_state makes the rest of the stream)
   if n > 0 then
     local b, at = s.b, s.n
     local byte = string.byte
@@ -106,12 +97,14 @@ feed = function(s, bytes, time, boundary, final, built)
       k = k + 8
     end
     for rest = k, n do b[at + rest - 1] = byte(bytes, rest) end
-    local times = s.times
+    local times, silences = s.times, s.silences
     local count = #times
     times[count + 1] = s.base + at
     if time == nil then times[count + 2] = false else times[count + 2] = time end
+    -- (a silence of t3.5 before the record: stream.py feed; a record is only ever added after the ones kept)
+    if count > 0 and silent_before(times, count + 1) then silences[#silences + 1] = s.base + at end
     s.n = at + n
-    if boundary then s.boundaries[s.base + s.n] = true end
+    if boundary then s.boundaries[#s.boundaries + 1] = s.base + s.n end
   end
   local items = s.items -- (one list a stream, emptied each time: its items are taken before the next feed)
   for index = #items, 1, -1 do items[index] = nil end

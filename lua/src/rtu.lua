@@ -5,14 +5,9 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 
--- The first boundary (a record's end, a silence) after i, up to n; nil: none there.
+-- The first record end after i, up to n; nil: none there.
 local function record_end(s, i, n)
-  local base, stop = s.base, nil
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at > i and at <= n and (stop == nil or at < stop) then stop = at end
-  end
-  return stop
+  return first_after(s, s.boundaries, i, n)
 end
 
 -- Does a layout at i check out and end where its record does (a code without a length rule: its CRC checks at
@@ -35,17 +30,28 @@ local function ends_record(s, b, i, n)
   return false
 end
 
+-- A record end's answer to ends_record, with the state it was given in (the stream's end, the answer awaited and
+-- its echo: stream.py _ends_memo): each CRC scan weighs the record ends ahead of it, asked again for every start.
+local ends_memo, ends_known = {}, 0
+
 -- Where a CRC scan from i stops (rtu.py _framed_reach): the first record after i that is a frame of its own, else
 -- n. A scan across it read noise and that frame as one frame, and waited for bytes past it in one pass.
 local function framed_reach(s, b, i, n)
-  local base, reach = s.base, n
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at > i and at < reach and at < i + MAX_ADU and n - at >= MIN_ADU and ends_record(s, b, at, n) then
-      reach = at
+  local base, ends = s.base, s.boundaries
+  local stop = base + math.min(n - MIN_ADU + 1, i + MAX_ADU)
+  if ends_known > 4 * MAX_ADU then ends_memo, ends_known = {}, 0 end
+  for index = first_above(ends, base + i, 1), #ends do -- (ascending: the first that is a frame of its own)
+    local offset = ends[index]
+    if offset >= stop then break end
+    local known = ends_memo[offset]
+    if known == nil or known[1] ~= s or known[2] ~= base + n or known[3] ~= s.expect or known[4] ~= s.echo then
+      known = { s, base + n, s.expect, s.echo, ends_record(s, b, offset - base, n) }
+      if ends_memo[offset] == nil then ends_known = ends_known + 1 end
+      ends_memo[offset] = known
     end
+    if known[5] then return offset - base end
   end
-  return reach
+  return n
 end
 
 -- Would a reading at i of `length` bytes (NEED: more than there are) swallow a record that is a frame of its own,
@@ -104,11 +110,8 @@ end
 
 -- Does a record start at i (stream.py _record_starts_at)? Every record's start is in s.times while its bytes are.
 local function record_start(s, i)
-  local at, times = s.base + i, s.times
-  for index = 1, #times, 2 do
-    if times[index] == at then return true end
-  end
-  return false
+  local times = s.times
+  return times[first_above(times, s.base + i - 1, 2)] == s.base + i
 end
 
 -- intact_inside, where records that are frames (a record that is this one, or the next one a frame: ends_record)

@@ -17,18 +17,43 @@ local GLITCH = FRAMING.glitch_bytes
 -- s.n of them; s.base is the stream offset of s.b[0]. A record's end is a frame boundary (pcap records
 -- are chunks with boundary=True), yet it is no end of data: a frame cut by it waits for the next
 -- record, and the end of the capture (finish) decides what is still waiting.
+-- Record ends (s.boundaries) and silences (s.silences, found by feed) are ascending stream offsets, lists asked by
+-- bisection (framing/offsets.py Offsets), as are the record starts in s.times: a look-up through all of them made
+-- a capture of one-byte records (a USB tap, a line at the wrong speed) cost each byte the buffer's records, many
+-- times over. The index of the first entry of `list` above `value` (past the end: none); step 2: the entries at
+-- odd indices alone (s.times' offsets).
+local function first_above(list, value, step)
+  local low, high = 1, floor((#list + step - 1) / step) + 1 -- (entry numbers; the answer is in low .. high)
+  while low < high do
+    local mid = floor((low + high) / 2)
+    if list[mid * step - step + 1] > value then high = mid else low = mid + 1 end
+  end
+  return low * step - step + 1
+end
+
+-- The first offset of `list` after buffer index i, up to n (Offsets.first_after), as a buffer index; nil: none.
+local function first_after(s, list, i, n)
+  local at = list[first_above(list, s.base + i, 1)]
+  if at ~= nil and at - s.base <= n then return at - s.base end
+  return nil
+end
+
+-- Forget the first `count` entries of `list` (below the buffer's new base: Offsets.drop_below), moved down in place.
+local function drop_first(list, count)
+  if count <= 0 then return end
+  local length = #list
+  for index = count + 1, length do list[index - count] = list[index] end
+  for index = length, length - count + 1, -1 do list[index] = nil end
+end
+
 local function boundary_at(s, i)
-  return s.boundaries[s.base + i] == true
+  return first_after(s, s.boundaries, i - 1, i) == i
 end
 
 -- The stream offset's time: the time of the record its byte came in (stream.py _time_at). s.times
 -- holds (stream offset, time) pairs flat, oldest first, false for a record without a time.
 local function time_at(s, offset)
-  local times = s.times
-  for index = #times - 1, 1, -2 do
-    if times[index] <= offset then return times[index + 1] or nil end
-  end
-  return nil
+  return s.times[first_above(s.times, offset, 2) - 1] or nil
 end
 
 -- Bytes of the noise run being built are copied out of the buffer: the run may outlast the records
@@ -87,7 +112,7 @@ local function inner_gaps(s, frame)
   local stop, ascii = offset + frame.length, s.mode == "ascii"
   local char_time, limit = CHAR_TIME, T15
   if ascii then char_time, limit = ASCII_CHAR_TIME, TIMING.ascii_max_silence end
-  for index = 3, #times, 2 do
+  for index = math.max(3, first_above(times, offset, 2)), #times, 2 do -- (the records after its first)
     local start, time, before = times[index], times[index + 1], times[index - 1]
     if start >= stop then break end -- (oldest first)
     if start > offset and time and before then
@@ -109,16 +134,10 @@ local function silent_before(times, index)
   return time and before and (time - before) / NS - (times[index] - times[index - 2]) * CHAR_TIME >= T35
 end
 
--- The index of the first record after i, before n, that a silence of t3.5 comes before (stream.py _silences, as
--- add_noise finds them), nil: none.
+-- The index of the first record after i, before n, that a silence of t3.5 comes before (stream.py _silences), nil:
+-- none.
 local function silence_after(s, i, n)
-  local times, base = s.times, s.base
-  for index = 3, #times, 2 do
-    local at = times[index] - base
-    if at >= n then return nil end -- (oldest first)
-    if at > i and silent_before(times, index) then return at end
-  end
-  return nil
+  return first_after(s, s.silences, i, n - 1)
 end
 
 -- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
@@ -134,14 +153,11 @@ local function add_noise(s, start, stop, reason, items)
   local b = s.b
   -- Only glitch bytes since the last frame or boundary (stream.py _add_noise): the next start is anchored.
   if s.noise == nil and not s.noise_cut then s.glitches_only = true end
-  local check_from = start
-  local base = s.base
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at >= start and at < stop then
-      s.glitches_only = true
-      check_from = math.max(at, check_from)
-    end
+  local check_from, base, ends = start, s.base, s.boundaries
+  local last = ends[first_above(ends, base + stop - 1, 1) - 1] -- (the last record end inside the bytes)
+  if last ~= nil and last >= base + start then
+    s.glitches_only = true
+    check_from = last - base
   end
   if s.glitches_only then
     for k = check_from, stop - 1 do
@@ -151,26 +167,24 @@ local function add_noise(s, start, stop, reason, items)
       end
     end
   end
-  local times = s.times
-  if #times > 2 and s.mode ~= "ascii" then -- (ASCII allows a second's silence inside a frame: stream.py)
+  local silences = s.silences
+  if s.mode ~= "ascii" then -- (ASCII allows a second's silence inside a frame: stream.py)
     -- Records starting inside the bytes after a silence (stream.py feed, silence_before): the run stays one
     -- for the framer's decisions, its items are cut there (_add_noise).
-    for index = 3, #times, 2 do
-      local at = times[index] - base
+    for index = first_above(silences, base + start - 1, 1), #silences do
+      local at = silences[index] - base
       if at >= stop then break end -- (oldest first)
-      if at >= start and silent_before(times, index) then
-        if at > start then add_run(s, b, start, at, reason, items) end
-        local noise = s.noise
-        if noise ~= nil then
-          local parts = noise.parts
-          if parts == nil then
-            parts = {}
-            noise.parts = parts
-          end
-          parts[#parts + 1], parts[#parts + 2], parts[#parts + 3] = noise.length, reason, times[index + 1]
+      if at > start then add_run(s, b, start, at, reason, items) end
+      local noise = s.noise
+      if noise ~= nil then
+        local parts = noise.parts
+        if parts == nil then
+          parts = {}
+          noise.parts = parts
         end
-        start = at
+        parts[#parts + 1], parts[#parts + 2], parts[#parts + 3] = noise.length, reason, time_at(s, base + at)
       end
+      start = at
     end
   end
   add_run(s, b, start, stop, reason, items)
@@ -362,11 +376,8 @@ local function repeats(s, b, i, since, n, stop)
     end
   end
   if period == nil then return i, i + 4 * REPEAT_PROBE end
-  local first, limit, base = i - period, math.min(n, stop + REPEAT_WINDOW), s.base
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at >= first and at < limit then limit = at end
-  end
+  local limit = math.min(n, stop + REPEAT_WINDOW)
+  limit = first_after(s, s.boundaries, i - period - 1, limit - 1) or limit -- (none inside: evidence)
   local stop_at = i
   while stop_at < limit and b[stop_at] == b[stop_at - period] do stop_at = stop_at + 1 end
   local last = stop_at - REPEAT_WINDOW
