@@ -4571,8 +4571,7 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, ECHO_CODES, FRAMING, MAX_ADU, MIN_ADU, NEED = DATA, ECHO_CODES, FRAMING, MAX_ADU, MIN_ADU, NEED
 local NOISE, NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo = NOISE, NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo
-local awaited, crc_string_ok, floor, format = awaited, crc_string_ok, floor, format
-local interpretations, math, pairs, type = interpretations, math, pairs, type
+local crc_string_ok, floor, format, math, pairs, type = crc_string_ok, floor, format, math, pairs, type
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request): a record that is the usual answer to the
@@ -4875,15 +4874,6 @@ local function emit(s, frame, items)
   if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, _await_after)
 end
 
--- The first interpretation of the answer awaited at b[i] and what its rule gives there (length, is_scan,
--- declared), or nil: what the framers weigh at the end of the capture (rtu.py, ascii.py _cut_answer).
-local function awaited_reading(s, b, i, n)
-  if not awaited(s, b, i, n) then return nil end
-  local first = interpretations(s, b[i], b[i + 1], b, i, n)[1]
-  if first == nil then return nil end
-  return first[1], first[2](b, i, n)
-end
-
 -- Is a reading of `kind` and `length` at the answer awaited's start a normal answer of another length than its
 -- request implies (rules.py Awaiting._not_the_answer)? Its byte count cannot be the answer's: at the end of the
 -- capture the bytes are the next request (0C 03 20 D0 after a read of 3 registers: not a byte count of 32).
@@ -4956,11 +4946,11 @@ local function repeats(s, b, i, since, n, stop)
   return last + 1, stop_at
 end
 M.GLITCH, M.REPEAT_PROBE, M.TOO_SHORT, M.add_noise = GLITCH, REPEAT_PROBE, TOO_SHORT, add_noise
-M.add_skipped, M.await_answer, M.awaited_reading = add_skipped, await_answer, awaited_reading
-M.awaits_answer, M.boundary_at, M.cut_reason, M.drop_first = awaits_answer, boundary_at, cut_reason, drop_first
-M.emit, M.expect_after, M.first_above, M.first_after = emit, expect_after, first_above, first_after
-M.flush_noise, M.lane, M.no_frame, M.not_the_answer = flush_noise, lane, no_frame, not_the_answer
-M.repeats, M.silence_after, M.silent_before, M.time_at = repeats, silence_after, silent_before, time_at
+M.add_skipped, M.await_answer, M.awaits_answer = add_skipped, await_answer, awaits_answer
+M.boundary_at, M.cut_reason, M.drop_first, M.emit = boundary_at, cut_reason, drop_first, emit
+M.expect_after, M.first_above, M.first_after, M.flush_noise = expect_after, first_above, first_after, flush_noise
+M.lane, M.no_frame, M.not_the_answer, M.repeats = lane, no_frame, not_the_answer, repeats
+M.silence_after, M.silent_before, M.time_at = silence_after, silent_before, time_at
 M.whole_crc_good = whole_crc_good
 end
 
@@ -4975,17 +4965,12 @@ local DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE = DATA, EXCEPTION, FR
 local MIN_ADU, NEED, NOISE_ITEM_MAX, NONE = MIN_ADU, NEED, NOISE_ITEM_MAX, NONE
 local NO_INTERPRETATION, REPEAT_PROBE, REQUEST, RESPONSE = NO_INTERPRETATION, REPEAT_PROBE, REQUEST, RESPONSE
 local TOO_SHORT, add_noise, add_skipped, awaited = TOO_SHORT, add_noise, add_skipped, awaited
-local awaited_reading, boundary_at, crc16, crc_lengths = awaited_reading, boundary_at, crc16, crc_lengths
-local crc_ok_at, crc_scan, cut_reason, emit, first_above = crc_ok_at, crc_scan, cut_reason, emit, first_above
-local first_after, interpretations, math, no_frame = first_after, interpretations, math, no_frame
-local not_the_answer, possible_start, repeats, scanned = not_the_answer, possible_start, repeats, scanned
-local silence_after, table, time_at = silence_after, table, time_at
+local boundary_at, crc16, crc_lengths, crc_ok_at, crc_scan = boundary_at, crc16, crc_lengths, crc_ok_at, crc_scan
+local cut_reason, emit, first_above, first_after = cut_reason, emit, first_above, first_after
+local interpretations, math, no_frame, not_the_answer = interpretations, math, no_frame, not_the_answer
+local possible_start, repeats, scanned, silence_after = possible_start, repeats, scanned, silence_after
+local table, time_at = table, time_at
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
-
--- The first record end after i, up to n; nil: none there.
-local function record_end(s, i, n)
-  return first_after(s, s.boundaries, i, n)
-end
 
 -- Does a layout at i check out and end where its record does (a code without a length rule: its CRC checks at
 -- the record's end)? The source says a frame ends there: a glitch-byte reading of b[i] before a longer frame
@@ -4996,7 +4981,7 @@ local function ends_record(s, b, i, n)
     local length, is_scan, _, fallback = list[index][2](b, i, n)
     if fallback ~= nil and not crc_ok_at(b, i, length) then is_scan, length = true, fallback end -- (its CRC scan)
     if is_scan then -- (rtu.py _ends_record: the record's length, from the scan's minimum on)
-      local stop = record_end(s, i, n)
+      local stop = first_after(s, s.boundaries, i, n) -- (the first record end after i)
       length = stop ~= nil and stop - i >= length and stop - i or 0
     end
     if length >= MIN_ADU and length <= MAX_ADU and i + length <= n and boundary_at(s, i + length)
@@ -5193,20 +5178,16 @@ end
 -- At the end of the input: do the bytes from i begin the answer awaited, cut by the end of the capture
 -- (rtu.py _cut_answer)? The reason, or nil. (`silence`: by a silence at n: silence_cut)
 local function cut_answer(s, b, i, n, silence)
-  if n - i < 2 then return nil end
+  if n - i < 2 or not awaited(s, b, i, n) then return nil end
   -- (the answer's reading, unless it counts nothing or is not as long as the request implies: then the next, a
   -- request repeated before the answer, or the next one)
-  local kind, length, is_scan, declared = awaited_reading(s, b, i, n)
-  if kind ~= nil and not is_scan and (counts_nothing(b, i, kind, length) or not_the_answer(s, kind, length)) then
-    kind = nil
-    local list = interpretations(s, b[i], b[i + 1], b, i, n)
-    for index = 2, #list do
-      length, is_scan, declared = list[index][2](b, i, n)
-      local other = list[index][1]
-      if is_scan or not (counts_nothing(b, i, other, length) or not_the_answer(s, other, length)) then
-        kind = list[index][1]
-        break
-      end
+  local list, kind, length, is_scan, declared = interpretations(s, b[i], b[i + 1], b, i, n), nil, nil, nil, nil
+  for index = 1, #list do
+    local other = list[index][1]
+    length, is_scan, declared = list[index][2](b, i, n)
+    if is_scan or not (counts_nothing(b, i, other, length) or not_the_answer(s, other, length)) then
+      kind = other
+      break
     end
   end
   if kind == nil then return nil end
@@ -5366,7 +5347,7 @@ end
 local function bounded_run(s, b, i, n, final)
   if not bounded_start(s, i) then return 0 end
   -- (up to a record's end or silence, the frames inside it only: as if the input ended there)
-  local stop, last = record_end(s, i, n), true
+  local stop, last = first_after(s, s.boundaries, i, n), true
   if stop == nil then stop, last = n, final end
   for stop_at = i + 1, math.min(stop, i + MAX_ADU) do
     local found = valid_frame_at(s, b, stop_at, stop, last, false) -- (at `stop` itself: true when last)
@@ -5625,10 +5606,6 @@ local function frame_end(sample)
   return nil
 end
 
-local function holds_frame(sample)
-  return frame_end(sample) ~= nil
-end
-
 -- Could an RTU frame start at b[at]: a slave address, a public function code or its exception?
 local function rtu_start(b, at)
   return b[at] <= MAX_SLAVE and PUBLIC[b[at + 1] % 128] ~= nil
@@ -5680,7 +5657,7 @@ end
 local function detect_mode(sample)
   -- 'ascii' when the sample holds a whole ASCII frame (whatever noise comes before it), or when a ':' is
   -- followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF (protocol/ascii.py).
-  if holds_frame(sample) then return "ascii" end
+  if frame_end(sample) then return "ascii" end
   local colon = sample:find(":", 1, true)
   if colon == nil or colon == #sample then return "rtu" end
   for k = colon + 1, math.min(colon + 2, #sample) do -- (the one or two bytes after it)
@@ -5702,7 +5679,7 @@ end
 -- carried.
 local function sample_modes(sample, scan)
   local told = #sample >= MODE_SAMPLE -- (the first answer holds for any longer sample)
-  if holds_frame(sample:sub(1, MODE_SAMPLE)) then return told and "ascii" or nil, "ascii" end
+  if frame_end(sample:sub(1, MODE_SAMPLE)) then return told and "ascii" or nil, "ascii" end
   sample = sample:sub(1, MODE_REACH)
   local ascii_end, rtu_end = frame_end(sample), rtu_pair_end(sample, scan)
   local mode

@@ -53,10 +53,6 @@ local function frame_end(sample)
   return nil
 end
 
-local function holds_frame(sample)
-  return frame_end(sample) ~= nil
-end
-
 -- Could an RTU frame start at b[at]: a slave address, a public function code or its exception?
 local function rtu_start(b, at)
   return b[at] <= MAX_SLAVE and PUBLIC[b[at + 1] % 128] ~= nil
@@ -108,7 +104,7 @@ end
 local function detect_mode(sample)
   -- 'ascii' when the sample holds a whole ASCII frame (whatever noise comes before it), or when a ':' is
   -- followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF (protocol/ascii.py).
-  if holds_frame(sample) then return "ascii" end
+  if frame_end(sample) then return "ascii" end
   local colon = sample:find(":", 1, true)
   if colon == nil or colon == #sample then return "rtu" end
   for k = colon + 1, math.min(colon + 2, #sample) do -- (the one or two bytes after it)
@@ -130,7 +126,7 @@ end
 -- carried.
 local function sample_modes(sample, scan)
   local told = #sample >= MODE_SAMPLE -- (the first answer holds for any longer sample)
-  if holds_frame(sample:sub(1, MODE_SAMPLE)) then return told and "ascii" or nil, "ascii" end
+  if frame_end(sample:sub(1, MODE_SAMPLE)) then return told and "ascii" or nil, "ascii" end
   sample = sample:sub(1, MODE_REACH)
   local ascii_end, rtu_end = frame_end(sample), rtu_pair_end(sample, scan)
   local mode

@@ -5,11 +5,6 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 
--- The first record end after i, up to n; nil: none there.
-local function record_end(s, i, n)
-  return first_after(s, s.boundaries, i, n)
-end
-
 -- Does a layout at i check out and end where its record does (a code without a length rule: its CRC checks at
 -- the record's end)? The source says a frame ends there: a glitch-byte reading of b[i] before a longer frame
 -- crossing that end is not waited for, which in a single pass (tshark without -2) held every later record.
@@ -19,7 +14,7 @@ local function ends_record(s, b, i, n)
     local length, is_scan, _, fallback = list[index][2](b, i, n)
     if fallback ~= nil and not crc_ok_at(b, i, length) then is_scan, length = true, fallback end -- (its CRC scan)
     if is_scan then -- (rtu.py _ends_record: the record's length, from the scan's minimum on)
-      local stop = record_end(s, i, n)
+      local stop = first_after(s, s.boundaries, i, n) -- (the first record end after i)
       length = stop ~= nil and stop - i >= length and stop - i or 0
     end
     if length >= MIN_ADU and length <= MAX_ADU and i + length <= n and boundary_at(s, i + length)
@@ -216,20 +211,16 @@ end
 -- At the end of the input: do the bytes from i begin the answer awaited, cut by the end of the capture
 -- (rtu.py _cut_answer)? The reason, or nil. (`silence`: by a silence at n: silence_cut)
 local function cut_answer(s, b, i, n, silence)
-  if n - i < 2 then return nil end
+  if n - i < 2 or not awaited(s, b, i, n) then return nil end
   -- (the answer's reading, unless it counts nothing or is not as long as the request implies: then the next, a
   -- request repeated before the answer, or the next one)
-  local kind, length, is_scan, declared = awaited_reading(s, b, i, n)
-  if kind ~= nil and not is_scan and (counts_nothing(b, i, kind, length) or not_the_answer(s, kind, length)) then
-    kind = nil
-    local list = interpretations(s, b[i], b[i + 1], b, i, n)
-    for index = 2, #list do
-      length, is_scan, declared = list[index][2](b, i, n)
-      local other = list[index][1]
-      if is_scan or not (counts_nothing(b, i, other, length) or not_the_answer(s, other, length)) then
-        kind = list[index][1]
-        break
-      end
+  local list, kind, length, is_scan, declared = interpretations(s, b[i], b[i + 1], b, i, n), nil, nil, nil, nil
+  for index = 1, #list do
+    local other = list[index][1]
+    length, is_scan, declared = list[index][2](b, i, n)
+    if is_scan or not (counts_nothing(b, i, other, length) or not_the_answer(s, other, length)) then
+      kind = other
+      break
     end
   end
   if kind == nil then return nil end
@@ -389,7 +380,7 @@ end
 local function bounded_run(s, b, i, n, final)
   if not bounded_start(s, i) then return 0 end
   -- (up to a record's end or silence, the frames inside it only: as if the input ended there)
-  local stop, last = record_end(s, i, n), true
+  local stop, last = first_after(s, s.boundaries, i, n), true
   if stop == nil then stop, last = n, final end
   for stop_at = i + 1, math.min(stop, i + MAX_ADU) do
     local found = valid_frame_at(s, b, stop_at, stop, last, false) -- (at `stop` itself: true when last)

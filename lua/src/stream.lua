@@ -305,15 +305,6 @@ local function emit(s, frame, items)
   if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, _await_after)
 end
 
--- The first interpretation of the answer awaited at b[i] and what its rule gives there (length, is_scan,
--- declared), or nil: what the framers weigh at the end of the capture (rtu.py, ascii.py _cut_answer).
-local function awaited_reading(s, b, i, n)
-  if not awaited(s, b, i, n) then return nil end
-  local first = interpretations(s, b[i], b[i + 1], b, i, n)[1]
-  if first == nil then return nil end
-  return first[1], first[2](b, i, n)
-end
-
 -- Is a reading of `kind` and `length` at the answer awaited's start a normal answer of another length than its
 -- request implies (rules.py Awaiting._not_the_answer)? Its byte count cannot be the answer's: at the end of the
 -- capture the bytes are the next request (0C 03 20 D0 after a read of 3 registers: not a byte count of 32).
