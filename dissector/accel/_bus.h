@@ -54,67 +54,6 @@ static PyObject *time_value(const Time *t) {
     return Py_BuildValue("(dO)", t->d, Py_None);
 }
 
-/* ---- dense tables: items in the order first made, in an array grown by half at a time, found through
- * an index of `size` slots (a power of two, at most 3/4 used): 1 + an item's position, 0: empty. An
- * item's key is its first `key` bytes (no padding in them). Open addressing of the items themselves took
- * twice their room: 65,536 tallies of 24 bytes took 131,072 slots, 3 MB a kind. ------------------- */
-typedef struct {
-    size_t item, key, first;         /* the bytes of an item and of its key; the first allocation: 3 << k */
-    size_t (*hash)(const void *key); /* of a key, or of an item (its key comes first) */
-} DenseKind;
-
-typedef struct {
-    char *items;
-    uint32_t *index;
-    size_t size, count, cap, hole; /* hole: the empty slot where the last dense_find stopped */
-} Dense;
-
-/* The item of `key`, or NULL (d->hole: where it goes). */
-static inline void *dense_find(Dense *d, const DenseKind *kind, const void *key) {
-    if (!d->size) return NULL;
-    size_t slot = kind->hash(key) & (d->size - 1);
-    for (uint32_t at; (at = d->index[slot]) != 0; slot = (slot + 1) & (d->size - 1))
-        if (memcmp(d->items + (at - 1) * kind->item, key, kind->key) == 0) return d->items + (at - 1) * kind->item;
-    d->hole = slot;
-    return NULL;
-}
-
-/* A new item of `key` after dense_find missed it: zeroed, its key copied; NULL with an exception set (no
- * memory). The array grows up to most + 1 items at first (0: no bound; more when the owner lets it). */
-static void *dense_add(Dense *d, const DenseKind *kind, const void *key, size_t most) {
-    if (d->count == d->cap) {
-        size_t cap = d->cap ? d->cap + d->cap / 2 : kind->first;
-        cap = most && d->cap <= most && cap > most + 1 ? most + 1 : cap;
-        if (resize(&d->items, &d->cap, cap, kind->item) < 0) return NULL;
-    }
-    if (4 * (d->count + 1) > 3 * d->size) {
-        size_t size = d->size ? 2 * d->size : kind->first / 3 * 4;
-        uint32_t *index = PyMem_Calloc(size, sizeof *index);
-        if (index == NULL) return PyErr_NoMemory();
-        PyMem_Free(d->index);
-        d->index = index, d->size = size;
-        for (size_t k = 0, slot; k < d->count; index[slot] = (uint32_t)++k)
-            for (slot = kind->hash(d->items + k * kind->item) & (size - 1); index[slot]; slot = (slot + 1) & (size - 1)) {}
-        (void)dense_find(d, kind, key);
-    }
-    char *item = d->items + d->count * kind->item;
-    memset(item, 0, kind->item);
-    memcpy(item, key, kind->key);
-    d->index[d->hole] = (uint32_t)++d->count;
-    return item;
-}
-
-/* Every item gone, the room kept. */
-static void dense_clear(Dense *d) {
-    d->count = 0;
-    if (d->index != NULL) memset(d->index, 0, d->size * sizeof *d->index);
-}
-
-static void dense_free(Dense *d) {
-    PyMem_Free(d->items);
-    PyMem_Free(d->index);
-}
-
 /* ---- tallies: (kind, key) -> a count or a sum, for every histogram of the report and the counts ---- */
 typedef struct {
     uint64_t tag; /* (TALLY_* + 1) << 24 | its owner (slave << 8 | function, slave, poll order) */

@@ -651,31 +651,6 @@ static PyObject *stats_stamp(Stats *st, PyObject *time) {
     Py_RETURN_NONE;
 }
 
-/* tallies(kind) -> {owner: {key: count}} of one histogram (_bus.h TALLY_*); sums (TALLY_MINUTES) as floats. */
-static PyObject *stats_tallies(Stats *st, PyObject *arg) {
-    int kind;
-    if (!PyArg_Parse(arg, "i", &kind)) return NULL;
-    if (kind < 0 || kind >= TALLIES) return PyErr_Format(PyExc_ValueError, "tallies: an unknown kind");
-    const Tallies *table = &st->tallies[kind];
-    PyObject *owners = PyDict_New();
-    for (size_t k = 0; owners != NULL && k < table->d.count; k++) {
-        const Tally *t = (const Tally *)table->d.items + k;
-        PyObject *owner = PyLong_FromUnsignedLong(t->tag & 0xFFFFFF), *key = PyLong_FromLongLong(t->key);
-        PyObject *value = kind == TALLY_MINUTES ? PyFloat_FromDouble(t->value) : PyLong_FromDouble(t->value);
-        PyObject *inner = owner != NULL ? PyDict_GetItemWithError(owners, owner) : NULL;
-        if (inner == NULL && owner != NULL && !PyErr_Occurred() && (inner = PyDict_New()) != NULL) {
-            if (PyDict_SetItem(owners, owner, inner) < 0) Py_CLEAR(owners);
-            Py_DECREF(inner); /* owners holds it */
-        }
-        if (owners == NULL || inner == NULL || key == NULL || value == NULL || PyDict_SetItem(inner, key, value) < 0)
-            Py_CLEAR(owners);
-        Py_XDECREF(owner);
-        Py_XDECREF(key);
-        Py_XDECREF(value);
-    }
-    return owners;
-}
-
 static PyObject *runs_value(const Run *runs, size_t count, int active_only) {
     PyObject *rows = PyList_New(0);
     for (size_t k = 0; rows != NULL && k < count; k++) {
@@ -684,8 +659,7 @@ static PyObject *runs_value(const Run *runs, size_t count, int active_only) {
         PyObject *row = Py_BuildValue("(iNNKKKLII)", r->slave, time_value(&r->start), time_value(&r->end),
                                       r->requests, r->first_frame, r->last_frame, r->offset, r->first_input,
                                       r->last_input);
-        if (row == NULL || PyList_Append(rows, row) < 0) Py_CLEAR(rows);
-        Py_XDECREF(row);
+        if (list_put(rows, row) < 0) Py_CLEAR(rows);
     }
     return rows;
 }
@@ -727,13 +701,29 @@ static PyObject *tally_groups(const Tallies *table, uint32_t mask, PyObject *(*r
     PyObject *groups = PyDict_New();
     for (size_t first = 0, end = 0; groups != NULL && first < n; first = end) {
         while (end < n && all[end].tag == all[first].tag) end++;
-        PyObject *owner = PyLong_FromUnsignedLong(all[first].tag & 0xFFFFFF), *value = row(all + first, end - first, arg);
-        if (owner == NULL || value == NULL || PyDict_SetItem(groups, owner, value) < 0) Py_CLEAR(groups);
-        Py_XDECREF(owner);
-        Py_XDECREF(value);
+        if (dict_put(groups, PyLong_FromUnsignedLong(all[first].tag & 0xFFFFFF), row(all + first, end - first, arg)) < 0)
+            Py_CLEAR(groups);
     }
     PyMem_Free(all);
     return groups;
+}
+
+/* {key: count} of one owner's tallies (as floats: `sums`). */
+static PyObject *tally_dict(const Tally *t, size_t n, int sums) {
+    PyObject *dict = PyDict_New();
+    for (size_t k = 0; dict != NULL && k < n; k++)
+        if (dict_put(dict, PyLong_FromLongLong(t[k].key), sums ? PyFloat_FromDouble(t[k].value) : PyLong_FromDouble(t[k].value)) < 0)
+            Py_CLEAR(dict);
+    return dict;
+}
+
+/* tallies(kind) -> {owner: {key: count}} of one histogram (_bus.h TALLY_*), by owner and key; sums (TALLY_MINUTES)
+ * as floats. */
+static PyObject *stats_tallies(Stats *st, PyObject *arg) {
+    int kind;
+    if (!PyArg_Parse(arg, "i", &kind)) return NULL;
+    if (kind < 0 || kind >= TALLIES) return PyErr_Format(PyExc_ValueError, "tallies: an unknown kind");
+    return tally_groups(&st->tallies[kind], ~0u, tally_dict, kind == TALLY_MINUTES);
 }
 
 /* The counts of a histogram of `bins` bins of n sorted response times (ns) as html.py _slaves makes it:
@@ -815,16 +805,10 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
         PyList_SET_ITEM(histogram, (Py_ssize_t)k, PyLong_FromUnsignedLongLong(b->histogram[k]));
     for (int slave = 0; responses != NULL && slave < 256; slave++) {
         const Quantile *q = &b->responses[slave];
-        if (q->low > q->high) continue; /* no response time */
-        PyObject *row = Py_BuildValue("(iddK)", slave, q->low, q->high, b->close[slave]);
-        if (row == NULL || PyList_Append(responses, row) < 0) Py_CLEAR(responses);
-        Py_XDECREF(row);
+        if (q->low <= q->high && list_put(responses, Py_BuildValue("(iddK)", slave, q->low, q->high, b->close[slave])) < 0)
+            Py_CLEAR(responses); /* (low > high: no response time) */
     }
-    if (histogram == NULL || responses == NULL) {
-        Py_XDECREF(histogram);
-        Py_XDECREF(responses);
-        return NULL;
-    }
+    /* (Py_BuildValue releases its N arguments when one of them is NULL) */
     PyObject *last_end = b->has_last_end ? PyFloat_FromDouble(b->last_end) : Py_NewRef(Py_None);
     PyObject *answer_end = b->has_answer_end ? PyFloat_FromDouble(b->answer_end) : Py_NewRef(Py_None);
     return Py_BuildValue("{s:O,s:K,s:N,s:N,s:d,s:N,s:K,s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:K,s:N,s:N,s:d,s:d}", "timed",

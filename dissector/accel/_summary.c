@@ -49,7 +49,7 @@
  * and the length rules. */
 #include "_tables.h"
 
-#define PIECE_SLOTS (1 << 17) /* register texts cached, open addressing, at most half full */
+#define PIECES (1 << 16) /* register texts cached at most */
 
 enum { FRAME_OK = 0, FRAME_NEED = -1, FRAME_HANDOVER = -2 };
 
@@ -83,6 +83,90 @@ static inline int grow(void *array, size_t *cap, size_t need, size_t size, size_
     size_t to = *cap ? *cap : first;
     while (to < need) to *= 2;
     return resize(array, cap, to, size);
+}
+
+/* ---- dense tables: items in the order first made, in an array grown by half at a time, found through
+ * an index of `size` slots (a power of two, at most 3/4 used): 1 + an item's position, 0: empty. An
+ * item's key is its first `key` bytes (no padding in them). Open addressing of the items themselves took
+ * twice their room: 65,536 tallies of 24 bytes took 131,072 slots, 3 MB a kind. ------------------- */
+typedef struct {
+    size_t item, key, first;         /* the bytes of an item and of its key; the first allocation: 3 << k */
+    size_t (*hash)(const void *key); /* of a key, or of an item (its key comes first) */
+} DenseKind;
+
+typedef struct {
+    char *items;
+    uint32_t *index;
+    size_t size, count, cap, hole; /* hole: the empty slot where the last dense_find stopped */
+} Dense;
+
+/* The item of `key`, or NULL (d->hole: where it goes). */
+static inline void *dense_find(Dense *d, const DenseKind *kind, const void *key) {
+    if (!d->size) return NULL;
+    size_t slot = kind->hash(key) & (d->size - 1);
+    for (uint32_t at; (at = d->index[slot]) != 0; slot = (slot + 1) & (d->size - 1))
+        if (memcmp(d->items + (at - 1) * kind->item, key, kind->key) == 0) return d->items + (at - 1) * kind->item;
+    d->hole = slot;
+    return NULL;
+}
+
+/* A new item of `key` after dense_find missed it: zeroed, its key copied; NULL with an exception set (no
+ * memory). The array grows up to most + 1 items at first (0: no bound; more when the owner lets it). */
+static void *dense_add(Dense *d, const DenseKind *kind, const void *key, size_t most) {
+    if (d->count == d->cap) {
+        size_t cap = d->cap ? d->cap + d->cap / 2 : kind->first;
+        cap = most && d->cap <= most && cap > most + 1 ? most + 1 : cap;
+        if (resize(&d->items, &d->cap, cap, kind->item) < 0) return NULL;
+    }
+    if (4 * (d->count + 1) > 3 * d->size) {
+        size_t size = d->size ? 2 * d->size : kind->first / 3 * 4;
+        uint32_t *index = PyMem_Calloc(size, sizeof *index);
+        if (index == NULL) return PyErr_NoMemory();
+        PyMem_Free(d->index);
+        d->index = index, d->size = size;
+        for (size_t k = 0, slot; k < d->count; index[slot] = (uint32_t)++k)
+            for (slot = kind->hash(d->items + k * kind->item) & (size - 1); index[slot]; slot = (slot + 1) & (size - 1)) {}
+        (void)dense_find(d, kind, key);
+    }
+    char *item = d->items + d->count * kind->item;
+    memset(item, 0, kind->item);
+    memcpy(item, key, kind->key);
+    d->index[d->hole] = (uint32_t)++d->count;
+    return item;
+}
+
+/* Every item gone, the room kept. */
+static void dense_clear(Dense *d) {
+    d->count = 0;
+    if (d->index != NULL) memset(d->index, 0, d->size * sizeof *d->index);
+}
+
+static void dense_free(Dense *d) {
+    PyMem_Free(d->items);
+    PyMem_Free(d->index);
+}
+
+static uint64_t mix(uint64_t key) { /* splitmix64's finaliser: keys differ in a few low bits */
+    key ^= key >> 30;
+    key *= 0xbf58476d1ce4e5b9ULL;
+    key ^= key >> 27;
+    key *= 0x94d049bb133111ebULL;
+    return key ^ (key >> 31);
+}
+
+/* ---- Python objects made in C: dict[key] = value and list.append(item) of new references, which they release
+ * (NULL: the error of making one, already set): 0, or -1 with an exception set. ---------------------------- */
+static int dict_put(PyObject *dict, PyObject *key, PyObject *value) {
+    int status = key != NULL && value != NULL ? PyDict_SetItem(dict, key, value) : -1;
+    Py_XDECREF(key);
+    Py_XDECREF(value);
+    return status;
+}
+
+static int list_put(PyObject *list, PyObject *item) {
+    int status = item != NULL ? PyList_Append(list, item) : -1;
+    Py_XDECREF(item);
+    return status;
 }
 
 /* ---- output buffer ---------------------------------------------------------------------------- */
@@ -191,7 +275,7 @@ typedef struct {
 } Remembered;
 
 typedef struct {
-    uint64_t key;     /* 0: empty */
+    uint64_t key;
     PyObject *text;   /* owned */
     const char *utf8; /* text's own UTF-8 form */
     Py_ssize_t length;
@@ -206,8 +290,7 @@ typedef struct {
     PyObject *slave_info;
     PyObject *piece;
     PyObject *texts;     /* texts(slave, request, answer or None) -> Texts or None (hand over) */
-    PieceSlot *pieces; /* (slave, function, address, value) -> the register's text */
-    size_t piece_count;
+    Dense pieces;        /* of PieceSlot: (slave, function, address, value) -> the register's text */
     unsigned long run_number; /* bits_depend answers are kept for one run() (see register_is_plain) */
     PyObject *read_word, *written_word;
     Slave slaves[256];
@@ -481,7 +564,7 @@ static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ss
     return undecided ? -1 : 0;
 }
 
-/* The first boundary (a record's end, a silence) after j, up to n; -1: none there. */
+/* The first boundary (a record's end, a silence) after j, up to n; -1: none there. (framed_reach's steps) */
 static Py_ssize_t record_end(Timeline *t, Py_ssize_t j, Py_ssize_t n) {
     for (Py_ssize_t k = chunk_of(t, t->base + j); k < t->count; k++) {
         Py_ssize_t at = (Py_ssize_t)(chunk_end(t, k) - t->base);
@@ -517,12 +600,8 @@ static int ends_record(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize
  * boundary) that is a frame of its own, else n; n on an untimed stream (no records). */
 static Py_ssize_t framed_reach(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n) {
     Timeline *t = (Timeline *)&e->tl;
-    if (!t->active) return n;
-    for (Py_ssize_t k = chunk_of(t, t->base + i); k < t->count; k++) {
-        Py_ssize_t at = (Py_ssize_t)(chunk_end(t, k) - t->base);
-        if (at >= i + MAX_ADU || n - at < MIN_ADU) break;
-        if (at > i && boundary_at(t, t->base + at) && ends_record(e, b, at, n)) return at;
-    }
+    for (Py_ssize_t at = i; t->active && (at = record_end(t, at, n)) > 0 && at < i + MAX_ADU && n - at >= MIN_ADU;)
+        if (ends_record(e, b, at, n)) return at;
     return n;
 }
 
@@ -716,55 +795,30 @@ static int write_memory(Engine *e) {
         if (!bit(s->pending, entry->address)) continue; /* a newer entry was written already */
         s->pending[entry->address >> 3] &= (uint8_t)~(1 << (entry->address & 7));
         if (status < 0) continue;
-        PyObject *key = PyLong_FromUnsignedLong(entry->address);
-        PyObject *value = PyLong_FromUnsignedLong(entry->value);
-        PyObject *frame = PyLong_FromUnsignedLongLong(entry->number);
         PyObject *how = entry->written ? e->written_word : e->read_word;
-        PyObject *item = (key && value && frame) ? PyTuple_Pack(3, value, frame, how) : NULL;
-        if (item == NULL || PyDict_SetItem(s->seen, key, item) < 0) status = -1;
-        Py_XDECREF(key);
-        Py_XDECREF(value);
-        Py_XDECREF(frame);
-        Py_XDECREF(item);
+        if (dict_put(s->seen, PyLong_FromUnsignedLong(entry->address),
+                     Py_BuildValue("(IKO)", (unsigned)entry->value, entry->number, how)) < 0)
+            status = -1;
     }
     e->log_len = 0;
     return status;
 }
 
-static uint64_t mix(uint64_t key) { /* splitmix64's finaliser: keys differ in a few low bits */
-    key ^= key >> 30;
-    key *= 0xbf58476d1ce4e5b9ULL;
-    key ^= key >> 27;
-    key *= 0x94d049bb133111ebULL;
-    return key ^ (key >> 31);
-}
+static size_t piece_hash(const void *key) { return (size_t)mix(*(const uint64_t *)key); }
+static const DenseKind PIECE_KIND = {sizeof(PieceSlot), sizeof(uint64_t), 3072, piece_hash};
 
 static void pieces_clear(Engine *e) {
-    if (e->pieces == NULL) return;
-    for (size_t k = 0; k < PIECE_SLOTS; k++) Py_XDECREF(e->pieces[k].text);
-    PyMem_Free(e->pieces);
-    e->pieces = NULL;
-    e->piece_count = 0;
+    for (size_t k = 0; k < e->pieces.count; k++) Py_DECREF(((PieceSlot *)e->pieces.items)[k].text);
+    dense_clear(&e->pieces);
 }
 
 /* The cached text of a mapped register, asked of the Python callback on first sight. */
 static const PieceSlot *piece_for(Engine *e, int slave, int function, unsigned address, unsigned value,
                                   PieceSlot *scratch) {
     /* The function matters only for a PLC-style label; it is part of the key all the same. */
-    uint64_t key = 1ULL << 63 | (uint64_t)handled_index(function) << 40 | (uint64_t)slave << 32 |
-                   (uint64_t)address << 16 | value;
-    if (e->pieces == NULL) {
-        e->pieces = PyMem_Calloc(PIECE_SLOTS, sizeof *e->pieces);
-        if (e->pieces == NULL) {
-            PyErr_NoMemory();
-            return NULL;
-        }
-    }
-    size_t slot = (size_t)mix(key) & (PIECE_SLOTS - 1);
-    while (e->pieces[slot].key != 0) {
-        if (e->pieces[slot].key == key) return &e->pieces[slot];
-        slot = (slot + 1) & (PIECE_SLOTS - 1);
-    }
+    uint64_t key = (uint64_t)handled_index(function) << 40 | (uint64_t)slave << 32 | (uint64_t)address << 16 | value;
+    PieceSlot *slot = dense_find(&e->pieces, &PIECE_KIND, &key);
+    if (slot != NULL) return slot;
     PyObject *entry = PyObject_CallFunction(e->piece, "iiII", slave, function, address, value);
     if (entry == NULL) return NULL;
     if (!PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 2 || !PyUnicode_Check(PyTuple_GET_ITEM(entry, 0))) {
@@ -780,13 +834,11 @@ static const PieceSlot *piece_for(Engine *e, int slave, int function, unsigned a
     }
     Py_INCREF(found.text); /* the text outlives the tuple */
     Py_DECREF(entry);
-    if (e->piece_count < PIECE_SLOTS / 2) {
-        e->pieces[slot] = found;
-        e->piece_count++;
-        return &e->pieces[slot];
-    }
-    *scratch = found; /* the cache is full: the caller releases the text after use */
-    return scratch;
+    /* (the cache full: in scratch, whose text the caller releases after use) */
+    slot = e->pieces.count < PIECES ? dense_add(&e->pieces, &PIECE_KIND, &key, PIECES) : scratch;
+    if (slot == NULL) Py_DECREF(found.text); /* (no memory) */
+    else *slot = found;
+    return slot;
 }
 
 /* `CHCF=IO (I/O profile)` or `8401=3`; *named: the annotator gave it a code or a text. */
@@ -1088,10 +1140,8 @@ static int line(Engine *e, const FrameRef *f, const FrameRef *request, unsigned 
  * hand over, -1 error. */
 static int texts_lines(Engine *e, const FrameRef *q, const uint8_t *b, const FrameRef *a, unsigned long long number) {
     if (e->texts == NULL || e->texts == Py_None) return 0;
-    PyObject *texts = a != NULL
-        ? PyObject_CallFunction(e->texts, "iy#y#", q->slave, (const char *)b + q->at, q->length,
-                                (const char *)b + a->at, a->length)
-        : PyObject_CallFunction(e->texts, "iy#O", q->slave, (const char *)b + q->at, q->length, Py_None);
+    PyObject *answer = a != NULL ? PyBytes_FromStringAndSize((const char *)b + a->at, a->length) : Py_NewRef(Py_None);
+    PyObject *texts = PyObject_CallFunction(e->texts, "iy#N", q->slave, (const char *)b + q->at, q->length, answer);
     if (texts == NULL) return -1;
     if (texts == Py_None) {
         Py_DECREF(texts);
@@ -1359,6 +1409,7 @@ static void engine_dealloc(Engine *e) {
     engine_clear(e);
     PyMem_Free(e->out.data);
     PyMem_Free(e->log);
+    dense_free(&e->pieces);
     Py_TYPE(e)->tp_free((PyObject *)e);
 }
 
@@ -1439,11 +1490,8 @@ static PyObject *module_crc_lengths(PyObject *self, PyObject *args) {
     if (start + maximum > view.len) maximum = view.len - start;
     CrcScan scan = crc_scan(view.buf, start, minimum, maximum);
     PyObject *lengths = PyList_New(0);
-    for (Py_ssize_t length; lengths != NULL && (length = crc_next(&scan)) != 0;) {
-        PyObject *found = PyLong_FromSsize_t(length);
-        if (found == NULL || PyList_Append(lengths, found) < 0) Py_CLEAR(lengths);
-        Py_XDECREF(found);
-    }
+    for (Py_ssize_t length; lengths != NULL && (length = crc_next(&scan)) != 0;)
+        if (list_put(lengths, PyLong_FromSsize_t(length)) < 0) Py_CLEAR(lengths);
     PyBuffer_Release(&view);
     return lengths;
 }
@@ -1468,18 +1516,10 @@ static struct PyModuleDef summary_module = {
 
 PyMODINIT_FUNC PyInit__summary(void) {
     PyObject *module = PyModule_Create(&summary_module);
-    if (module == NULL) return NULL;
     PyTypeObject *types[] = {&EngineType, &StatsType, &ColumnsType, &ReportType};
-    for (size_t k = 0; k < sizeof types / sizeof *types; k++) {
-        if (PyModule_AddType(module, types[k]) < 0) {
-            Py_DECREF(module);
-            return NULL;
-        }
-    }
     /* The stamp of the sources it was built from (dissector/accel/stamp.py, checked on import). */
-    if (PyModule_AddStringConstant(module, "SOURCES", VW3_SOURCES) < 0) {
-        Py_DECREF(module);
-        return NULL;
-    }
+    int failed = module == NULL || PyModule_AddStringConstant(module, "SOURCES", VW3_SOURCES) < 0;
+    for (size_t k = 0; !failed && k < sizeof types / sizeof *types; k++) failed = PyModule_AddType(module, types[k]) < 0;
+    if (failed) Py_CLEAR(module);
     return module;
 }
