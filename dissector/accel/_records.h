@@ -86,11 +86,10 @@ static PyObject *module_scan_pcap(PyObject *self, PyObject *args) {
     PyObject *last = count || previous != Py_None /* the last chunk read here, else the one given */
                          ? Py_BuildValue("(LLi)", previous_offset, previous_ns, previous_timed) : Py_NewRef(Py_None);
     PyObject *span = last == NULL ? NULL : timed_seen ? Py_BuildValue("(LL)", lowest, highest) : Py_NewRef(Py_None);
-    if (span == NULL) Py_XDECREF(last);
-    else
-        result = Py_BuildValue("(y#y#y#y#niLLNN)", data, size, (const char *)starts, count * (Py_ssize_t)sizeof(long long),
-                               (const char *)times, count * (Py_ssize_t)sizeof(long long), (const char *)flags, count,
-                               pos, stop, records, offset, last, span);
+    /* (Py_BuildValue releases its N arguments when one of them is NULL) */
+    result = Py_BuildValue("(y#y#y#y#niLLNN)", data, size, (const char *)starts, count * (Py_ssize_t)sizeof(long long),
+                           (const char *)times, count * (Py_ssize_t)sizeof(long long), (const char *)flags, count,
+                           pos, stop, records, offset, last, span);
 done:
     PyMem_Free(starts);
     PyMem_Free(times);

@@ -561,15 +561,13 @@ static PyObject *stats_table(Stats *st, PyObject *args) {
         int grouped = end - first >= (size_t)group_min;
         for (size_t start = first; start < end && PyList_GET_SIZE(pieces) < max_rows; start = grouped ? end : start + 1) {
             size_t stop = grouped ? end : start + 1;
-            PyObject *members = PyList_New((Py_ssize_t)(stop - start));
-            for (size_t m = start; members != NULL && m < stop; m++) {
-                PyObject *row = param_row(order[m]);
-                if (row == NULL) Py_CLEAR(members);
-                else PyList_SET_ITEM(members, (Py_ssize_t)(m - start), row);
+            PyObject *members = PyList_New(0);
+            for (size_t m = start; members != NULL && m < stop; m++)
+                if (list_put(members, param_row(order[m])) < 0) Py_CLEAR(members);
+            if (list_put(pieces, members) < 0) {
+                Py_CLEAR(pieces);
+                break;
             }
-            if (members == NULL || PyList_Append(pieces, members) < 0) Py_CLEAR(pieces);
-            Py_XDECREF(members);
-            if (pieces == NULL) break;
         }
         expanded += grouped ? 1 : end - first;
         first = end;
@@ -737,12 +735,9 @@ static PyObject *time_bins(const Tally *t, size_t n, int bins) {
         long long bin = (long long)(((double)t[k].key / 1e9 - low) / width);
         counts[bin < bins - 1 ? bin : bins - 1] += t[k].value;
     }
-    PyObject *list = PyList_New(bins);
-    for (int k = 0; list != NULL && k < bins; k++) {
-        PyObject *count = PyLong_FromDouble(counts[k]);
-        if (count == NULL) Py_CLEAR(list);
-        else PyList_SET_ITEM(list, k, count);
-    }
+    PyObject *list = PyList_New(0);
+    for (int k = 0; list != NULL && k < bins; k++)
+        if (list_put(list, PyLong_FromDouble(counts[k])) < 0) Py_CLEAR(list);
     PyMem_Free(counts);
     return list;
 }
@@ -800,9 +795,9 @@ static PyObject *stats_time_summaries(Stats *st, PyObject *args) {
 /* bus_state(): what BusTiming keeps but its histograms (tallies()), for the report (bustiming.py). */
 static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
     const Bus *b = &st->bus;
-    PyObject *histogram = PyList_New(GAP_BINS), *responses = PyList_New(0);
+    PyObject *histogram = PyList_New(0), *responses = PyList_New(0);
     for (size_t k = 0; histogram != NULL && k < GAP_BINS; k++)
-        PyList_SET_ITEM(histogram, (Py_ssize_t)k, PyLong_FromUnsignedLongLong(b->histogram[k]));
+        if (list_put(histogram, PyLong_FromUnsignedLongLong(b->histogram[k])) < 0) Py_CLEAR(histogram);
     for (int slave = 0; responses != NULL && slave < 256; slave++) {
         const Quantile *q = &b->responses[slave];
         if (q->low <= q->high && list_put(responses, Py_BuildValue("(iddK)", slave, q->low, q->high, b->close[slave])) < 0)

@@ -202,10 +202,13 @@ static inline void out_number(Out *o, unsigned long long v, unsigned radix, int 
 
 static inline void out_uint(Out *o, unsigned long long v, int width) { out_number(o, v, 10, width, ' '); }
 
-/* describe.py's tail after the first items shown: `… (+n)`, `… (+n bytes)` (`end` ")" or " bytes)"). */
-static inline void out_more(Out *o, unsigned long long more, const char *end) {
+/* describe.py's tail of `count` items past the first `shown`: `… (+n)`, `… (+n bytes)` (`lead` before it, `end`
+ * ")" or " bytes)"); none when they were all shown. */
+static inline void out_more(Out *o, unsigned long long count, unsigned long long shown, const char *lead, const char *end) {
+    if (count <= shown) return;
+    out_cstr(o, lead);
     out_cstr(o, "\xe2\x80\xa6 (+");
-    out_uint(o, more, 0);
+    out_uint(o, count - shown, 0);
     out_cstr(o, end);
 }
 
@@ -867,10 +870,7 @@ static int values_text(Engine *e, Slave *s, int slave, int function, const Words
         if (k) out_put(&e->out, " ", 1);
         if (piece(e, s, slave, function, words_address(w, k), words_value(w, k), &named) < 0) return -1;
     }
-    if (w->count > MAX_VALUES) {
-        out_put(&e->out, " ", 1);
-        out_more(&e->out, w->count - MAX_VALUES, ")");
-    }
+    out_more(&e->out, w->count, MAX_VALUES, " ", ")");
     return 0;
 }
 
@@ -938,7 +938,7 @@ static void bits_text(Out *o, const uint8_t *packed, unsigned count) {
     unsigned shown = count < MAX_BITS ? count : MAX_BITS;
     if (out_reserve(o, shown) < 0) return;
     for (unsigned k = 0; k < shown; k++) o->data[o->len++] = (char)('0' + (packed[k >> 3] >> (k & 7) & 1));
-    if (count > MAX_BITS) out_more(o, count - MAX_BITS, ")");
+    out_more(o, count, MAX_BITS, "", ")");
 }
 
 /* fields.lifter's checks of a frame by its lifting rule L (_tables.h Lift), FC8's by its named case, the
@@ -1086,7 +1086,7 @@ static int info_text(Engine *e, Slave *s, const InfoForm *info, const Lifted *li
                 e->out.data[e->out.len++] = "0123456789abcdef"[data[k] >> 4];
                 e->out.data[e->out.len++] = "0123456789abcdef"[data[k] & 15];
             }
-            if (size > MAX_DATA_BYTES) out_more(&e->out, (unsigned long long)(size - MAX_DATA_BYTES), " bytes)");
+            if (size > 0) out_more(&e->out, (unsigned long long)size, MAX_DATA_BYTES, "", " bytes)");
             break;
         }
         case STEP_FIFO: /* describe._fifo: `:` and the first of `value` words, how many more; nothing for none */
@@ -1095,10 +1095,7 @@ static int info_text(Engine *e, Slave *s, const InfoForm *info, const Lifted *li
                 out_put(&e->out, " ", 1);
                 out_uint(&e->out, word(f + info->at[step->number] + 2 * j), 0);
             }
-            if (value > MAX_FIFO_VALUES) {
-                out_put(&e->out, " ", 1);
-                out_more(&e->out, value - MAX_FIFO_VALUES, ")");
-            }
+            out_more(&e->out, value, MAX_FIFO_VALUES, " ", ")");
             break;
         }
     }
