@@ -360,10 +360,7 @@ static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, cons
 static int report_init(Report *r, PyObject *args, PyObject *kwargs) {
     static char *keywords[] = {"collector", "health", "stamp", "exception", NULL};
     PyObject *objects[4];
-    if (r->collector != NULL) {
-        PyErr_SetString(PyExc_RuntimeError, "Report is initialised once");
-        return -1;
-    }
+    if (r->collector != NULL) return fail(PyExc_RuntimeError, "Report is initialised once");
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOOO", keywords, &objects[0], &objects[1], &objects[2], &objects[3]))
         return -1;
     r->collector = objects[0], r->health = objects[1], r->stamp = objects[2], r->exception = objects[3];
@@ -419,10 +416,8 @@ static PyTypeObject ReportType = {
 
 /* Stats.report = a Report or None (_stats.h: count_transaction feeds it). */
 static int stats_set_report(Stats *st, PyObject *value, void *closure) {
-    if (value != NULL && value != Py_None && !PyObject_TypeCheck(value, &ReportType)) {
-        PyErr_SetString(PyExc_TypeError, "report: a Report or None");
-        return -1;
-    }
+    if (value != NULL && value != Py_None && !PyObject_TypeCheck(value, &ReportType))
+        return fail(PyExc_TypeError, "report: a Report or None");
     Py_XSETREF(st->report, value != NULL && value != Py_None ? Py_NewRef(value) : NULL);
     return 0;
 }

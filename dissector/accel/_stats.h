@@ -446,18 +446,13 @@ failed: /* no memory (the run ends on it): what was moved is dropped, each refer
 
 /* A request key tuple (slave, function[, ...]) of up to 6 ints into *fields: 0 or -1. */
 static int key_fields(PyObject *key, PollKey *fields) {
-    if (!PyTuple_Check(key) || PyTuple_GET_SIZE(key) < 2 || PyTuple_GET_SIZE(key) > 6) {
-        PyErr_SetString(PyExc_TypeError, "a request key: a tuple of 2 to 6 ints");
-        return -1;
-    }
+    if (!PyTuple_Check(key) || PyTuple_GET_SIZE(key) < 2 || PyTuple_GET_SIZE(key) > 6)
+        return fail(PyExc_TypeError, "a request key: a tuple of 2 to 6 ints");
     *fields = (PollKey){.size = (uint32_t)PyTuple_GET_SIZE(key)};
     for (uint32_t k = 0; k < fields->size; k++) {
         unsigned long v = PyLong_AsUnsignedLong(PyTuple_GET_ITEM(key, k));
         if (v == (unsigned long)-1 && PyErr_Occurred()) return -1;
-        if (v > 0xFFFFFFFFUL) {
-            PyErr_SetString(PyExc_ValueError, "a request key's fields are 32-bit");
-            return -1;
-        }
+        if (v > 0xFFFFFFFFUL) return fail(PyExc_ValueError, "a request key's fields are 32-bit");
         fields->fields[k] = (uint32_t)v;
     }
     return 0;
@@ -831,15 +826,11 @@ static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "n|nny#O", keywords, &max_keys, &max_params, &max_tally, &tables,
                                      &size, &device_tables))
         return -1;
-    if (device_tables != Py_None && !PyCallable_Check(device_tables)) {
-        PyErr_SetString(PyExc_TypeError, "device_tables: slave -> bytes, or None");
-        return -1;
-    }
+    if (device_tables != Py_None && !PyCallable_Check(device_tables))
+        return fail(PyExc_TypeError, "device_tables: slave -> bytes, or None");
     Py_XSETREF(st->device_tables, device_tables == Py_None ? NULL : Py_NewRef(device_tables));
-    if (max_keys < 0 || max_params < 0 || max_tally < 0 || size > 256) {
-        PyErr_SetString(PyExc_ValueError, "max_keys, max_params and max_tally must be >= 0, tables 256 at most");
-        return -1;
-    }
+    if (max_keys < 0 || max_params < 0 || max_tally < 0 || size > 256)
+        return fail(PyExc_ValueError, "max_keys, max_params and max_tally must be >= 0, tables 256 at most");
     if (tables_valid(tables, size, "tables") < 0) return -1;
     memset(st->tables, 0, sizeof st->tables);
     memcpy(st->tables, tables, (size_t)size);

@@ -163,6 +163,12 @@ static int dict_put(PyObject *dict, PyObject *key, PyObject *value) {
     return status;
 }
 
+/* An exception of `type` set: -1 (PyErr_Format's NULL, for the functions that answer an int). */
+static int fail(PyObject *type, const char *text) {
+    PyErr_SetString(type, text);
+    return -1;
+}
+
 static int list_put(PyObject *list, PyObject *item) {
     int status = item != NULL ? PyList_Append(list, item) : -1;
     Py_XDECREF(item);
@@ -1289,10 +1295,7 @@ static PyObject *engine_run(Engine *e, PyObject *args) {
     Py_buffer view, starts = {0}, times = {0}, flags = {0};
     Py_ssize_t pos;
     long long base = 0;
-    if (e->slave_info == NULL) {
-        PyErr_SetString(PyExc_RuntimeError, "Engine not initialised");
-        return NULL;
-    }
+    if (e->slave_info == NULL) return PyErr_Format(PyExc_RuntimeError, "Engine not initialised");
     if (!idle(e, "run") || !PyArg_ParseTuple(args, "y*n|Ly*y*y*", &view, &pos, &base, &starts, &times, &flags))
         return NULL;
     int timed = PyTuple_GET_SIZE(args) > 2, step = STEP_ERROR;
@@ -1353,11 +1356,9 @@ static int engine_set_object(Engine *e, PyObject *value, void *closure) {
     int fits = value == NULL || value == Py_None || (judge ? PyBytes_Check(value) && PyBytes_GET_SIZE(value) == 256 * 32
                                                            : PyObject_TypeCheck(value, &StatsType));
     if (!idle(e, judge ? "judge" : "stats")) return -1;
-    if (!fits) {
-        PyErr_SetString(PyExc_TypeError, judge ? "judge: 8192 bytes (a bit per slave and function code) or None"
-                                               : "stats: a Stats or None");
-        return -1;
-    }
+    if (!fits)
+        return fail(PyExc_TypeError, judge ? "judge: 8192 bytes (a bit per slave and function code) or None"
+                                           : "stats: a Stats or None");
     PyObject **field = (PyObject **)((char *)e + (size_t)closure);
     Py_XSETREF(*field, value == Py_None ? NULL : Py_XNewRef(value));
     return 0;
