@@ -21,6 +21,7 @@ typedef struct {
     uint32_t counts[PARAM_COUNTS]; /* by PARAM_* (c_stats.py): reads, unreadable, writes, refused, changes */
     uint16_t last;
     uint8_t has_last, last_mapped; /* last_mapped: the device named the address (else no text to ask) */
+    uint8_t origins; /* bit t: counted of a code whose protocol table is t (FC4: input): where rehome finds its home */
     PyObject *text;       /* owned: the Python stages' text of the last value (maybe None); NULL: the namer's */
     PyObject *namer;      /* owned: the namer of the last value when text is NULL */
     PyObject *code;       /* owned, NULL: none yet */
@@ -161,13 +162,14 @@ static int take_code(Param *p, PyObject *namer, unsigned address, unsigned value
  * keeps the value, or the read status `status`, and the value's text (`text`, the Python stages', or NULL: the
  * namer's, asked when the report is made). 1: the state changed, 0: not (or not kept), -1: an error.
  * (Inlined: in words_event, once per register, the constant arguments fold away.) */
-static inline __attribute__((always_inline)) int param_event(Stats *st, int slave, int table, unsigned address,
-                                                              unsigned value, int event, PyObject *code,
-                                                              PyObject *status, PyObject *text, PyObject *namer,
-                                                              int mapped) {
+static inline __attribute__((always_inline)) int param_event(Stats *st, int slave, int table, int origin,
+                                                              unsigned address, unsigned value, int event,
+                                                              PyObject *code, PyObject *status, PyObject *text,
+                                                              PyObject *namer, int mapped) {
     int created;
     Param *p = param_get(st, slave, table, address, &created);
     if (p == NULL) return PyErr_Occurred() ? -1 : 0;
+    p->origins |= (uint8_t)(1u << origin);
     if (event != EVENT_CONFIRM || created) {
         if (code != NULL && code != Py_None) Py_XSETREF(p->code, Py_NewRef(code));
         else if (code == NULL && mapped && namer != NULL && namer != Py_None && p->code_namer != namer &&
@@ -214,11 +216,12 @@ static int slave_table(Stats *st, Slave *s, int slave, int function) {
     return (uint8_t)PyBytes_AS_STRING(st->slave_tables[slave])[function];
 }
 
-static int words_event(Stats *st, Slave *s, int slave, int table, const Words *w, int event) {
+static int words_event(Stats *st, Slave *s, int slave, int table, int origin, const Words *w, int event) {
     for (unsigned k = 0; k < w->count; k++) {
         unsigned address = words_address(w, k);
         int mapped = bit(s->mapped, address);
-        if (param_event(st, slave, table, address, words_value(w, k), event, NULL, NULL, NULL, s->namer, mapped) < 0)
+        if (param_event(st, slave, table, origin, address, words_value(w, k), event, NULL, NULL, NULL, s->namer,
+                        mapped) < 0)
             return -1;
     }
     return 0;
@@ -283,7 +286,7 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
     Words written; /* the writes a normal answer confirms (data/modbus.toml [confirm]): counted and drawn */
     const Words *confirmed =
         answer != NULL && !(answer[1] & 0x80) && confirmed_writes(answer, writes, &written) ? &written : NULL;
-    int table = slave_table(st, s, slave, function);
+    int table = slave_table(st, s, slave, function), origin = st->tables[function];
     if (table < 0 || (st->report != NULL && report_transaction(st->report, s, b, qf, af, confirmed, reads, number,
                                                                   table) < 0))
         return -1;
@@ -311,16 +314,16 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
         (answer == NULL && tally_add(st->tallies, TALLY_COUNTS, owner, COUNT_UNANSWERED, 1) < 0) ||
         poll_request(st, &key, number, answer == NULL, &qt) < 0)
         return -1;
-    if (writes != NULL && words_event(st, s, slave, table, writes, EVENT_WRITE) < 0) return -1;
+    if (writes != NULL && words_event(st, s, slave, table, origin, writes, EVENT_WRITE) < 0) return -1;
     if (answer == NULL) return 0;
     if (answer[1] & 0x80) { /* an exception: counted by its code */
         if (tally_add(st->tallies, TALLY_COUNTS, owner, answer[2], 1) < 0) return -1;
         poll_fail(st, &key);
-        return writes != NULL ? words_event(st, s, slave, table, writes, EVENT_REFUSED) : 0;
+        return writes != NULL ? words_event(st, s, slave, table, origin, writes, EVENT_REFUSED) : 0;
     }
     if (tally_add(st->tallies, TALLY_COUNTS, owner, COUNT_RESPONSES, 1) < 0) return -1;
-    if (confirmed != NULL && words_event(st, s, slave, table, confirmed, EVENT_CONFIRM) < 0) return -1;
-    return reads != NULL && reads->count ? words_event(st, s, slave, table, reads, EVENT_READ) : 0;
+    if (confirmed != NULL && words_event(st, s, slave, table, origin, confirmed, EVENT_CONFIRM) < 0) return -1;
+    return reads != NULL && reads->count ? words_event(st, s, slave, table, origin, reads, EVENT_READ) : 0;
 }
 
 /* ---- the Python object ------------------------------------------------------------------------- */
@@ -345,21 +348,26 @@ static void stats_dealloc(Stats *st) {
     Py_TYPE(st)->tp_free((PyObject *)st);
 }
 
-/* param(slave, address, event, value, code, text, table=0): a register of a frame the Python stages showed. */
+/* param(slave, address, event, value, code, text, table=0, origin=None): a register of a frame the Python stages
+ * showed; `origin`: its code's table in the protocol (None: `table`). */
 static PyObject *stats_param(Stats *st, PyObject *args) {
     int slave, event, table = 0;
     unsigned address, value;
-    PyObject *code, *text;
-    if (!PyArg_ParseTuple(args, "iIiIOO|i", &slave, &address, &event, &value, &code, &text, &table)) return NULL;
+    PyObject *code, *text, *given = Py_None;
+    if (!PyArg_ParseTuple(args, "iIiIOO|iO", &slave, &address, &event, &value, &code, &text, &table, &given))
+        return NULL;
+    long origin = given == Py_None ? table : PyLong_Check(given) ? PyLong_AsLong(given) : -1;
     if (slave < 0 || slave > 255 || address > 0xFFFF || event < 0 || event >= EVENTS || value > 0xFFFF ||
-        table < 0 || table >= PARAM_TABLES)
+        table < 0 || table >= PARAM_TABLES || origin < 0 || origin >= PARAM_TABLES) {
+        PyErr_Clear();
         return PyErr_Format(PyExc_ValueError, "param: slave 0..255, address and value 0..65535, a known event, "
-                                              "table 0..7");
+                                              "table and origin 0..7");
+    }
     if (event == EVENT_UNREADABLE && !PyUnicode_Check(text))
         return PyErr_Format(PyExc_TypeError, "param: an UNREADABLE event's text is its status");
     /* UNREADABLE (16#8000 or an explained exception): `text` is the status, no value */
     int unreadable = event == EVENT_UNREADABLE;
-    int changed = param_event(st, slave, table, address, value, event, code, unreadable ? text : NULL,
+    int changed = param_event(st, slave, table, (int)origin, address, value, event, code, unreadable ? text : NULL,
                               unreadable ? NULL : text, NULL, 0);
     return changed < 0 ? NULL : PyBool_FromLong(changed);
 }
@@ -392,6 +400,7 @@ static PyObject *stats_rename(Stats *st, PyObject *namers) {
  * references taken or released. 0, or -1 with an exception set. */
 static int param_merge(Param *kept, Param *moved) {
     for (int j = 0; j < PARAM_COUNTS; j++) kept->counts[j] += moved->counts[j];
+    kept->origins |= moved->origins;
     Param *first = kept->order <= moved->order ? kept : moved, *later = first == kept ? moved : kept;
     if (first->has_last && later->has_last) {
         int same = same_state(first, later->last, later->status);
@@ -410,8 +419,19 @@ static int param_merge(Param *kept, Param *moved) {
     return 0;
 }
 
-/* rehome(slave, homes): ParameterTable.rehome, the slave's parameters of each table moved to homes[table] (bytes,
- * by table: stats_store.SlaveTables): the table built again, in the order first seen. */
+/* stats_store.home: the table a parameter moves to, homes[t] of its origins t where that is one table (else its own). */
+static int param_home(const Param *p, const char *homes, Py_ssize_t size) {
+    int found = -1;
+    for (Py_ssize_t t = 0; t < size; t++) {
+        if (!(p->origins >> t & 1) || found == (uint8_t)homes[t]) continue;
+        if (found >= 0) return PARAM_TABLE(p->key);
+        found = (uint8_t)homes[t];
+    }
+    return found < 0 ? (int)PARAM_TABLE(p->key) : found;
+}
+
+/* rehome(slave, homes): ParameterTable.rehome, the slave's parameters moved to the tables homes (bytes, by table:
+ * stats_store.SlaveTables) gives their codes' protocol tables: the table built again, in the order first seen. */
 static PyObject *stats_rehome(Stats *st, PyObject *args) {
     int slave;
     const char *homes;
@@ -423,9 +443,8 @@ static PyObject *stats_rehome(Stats *st, PyObject *args) {
     Dense rebuilt = {0};
     for (size_t k = 0; k < st->params.count; k++) {
         Param *p = &PARAMS(st)[k];
-        int table = PARAM_TABLE(p->key);
-        uint32_t key = (int)PARAM_SLAVE(p->key) == slave && table < size
-                           ? param_key(slave, (uint8_t)homes[table], PARAM_ADDRESS(p->key)) : p->key;
+        uint32_t key = (int)PARAM_SLAVE(p->key) == slave ? param_key(slave, param_home(p, homes, size),
+                                                                     PARAM_ADDRESS(p->key)) : p->key;
         Param *kept = dense_find(&rebuilt, &PARAM_KIND, &key);
         if (kept != NULL) {
             if (param_merge(kept, p) < 0) goto failed;

@@ -54,7 +54,9 @@ When profile `auto` chooses again later (a choice taken back), the values kept o
 named again by the new device (`store.rename`), and listeners hear `renamed(slave)`. Where the new device
 reads a table with another's code (the ATV71 chosen after FC4 reads: its FC4 reads the holding
 registers), the parameters kept move to that table first (`store.rehome`, listeners' `rehomed(slave,
-homes)`): --stats shows one CHCF, not an input register beside it.
+homes)`): --stats shows one CHCF, not an input register beside it. Taken back (`generic` after the ATV71),
+what FC4 alone counted moves back to the input registers (the store keeps each parameter's codes' tables:
+stats_store.home); a parameter both tables counted stays one (its story cannot be parted).
 """
 from __future__ import annotations
 
@@ -127,6 +129,7 @@ class History:
         self._annotate = annotate
         self.annotate = annotate  # for the outputs' names (PLC-style labels)
         self._renamed: dict[int, int] = {}  # slave -> the choice frame its values were named again for
+        self._rehomed = 0  # moves made (_rehome)
         self._held: dict[int, list[Frame]] = {}  # slave -> its provisional frames, until its choice
         self._masked: dict[int, int | None] = {}  # the annotator's Mask Write values (Annotator.masked)
         if getattr(annotate, "masked", 0) is None:
@@ -150,7 +153,10 @@ class History:
                 # The first frame named with the profile chosen in frame `chosen`: what was kept of
                 # this slave before (here, or by the compiled engine in the same store) is named again.
                 self._renamed[slave] = chosen
-                self._rename(slave)
+                rehomed = self._rehomed
+                self.tables(slave)  # a device of other tables moves them first (SlaveTables: _rehome names them)
+                if self._rehomed == rehomed:
+                    self._rename(slave)
         if frame.provisional:
             if self._watching:
                 self._apply(frame, provisional=True)
@@ -294,6 +300,7 @@ class History:
         param = self.store.param
         slave = frame.slave
         table = self.tables(slave)[frame.function]
+        origin = TABLES[frame.function]  # (where a later device's tables move it: SlaveTables)
         registers = self._values(slave, registers)
         listeners = self.listeners if event in (CONFIRM, WRITE_OBSERVED) else None
         for register in registers:
@@ -302,7 +309,7 @@ class History:
                 if not confirmed:  # an answer without its request confirms nothing: not even counted
                     self.registers_without_address += 1
                 continue
-            changed = param(slave, address, event, register.value, register.code, register.text, table)
+            changed = param(slave, address, event, register.value, register.code, register.text, table, origin)
             if listeners:
                 for listener in listeners:
                     listener.state(frame, register, event, changed)
@@ -315,6 +322,7 @@ class History:
         param = self.store.param
         slave = frame.slave
         table = self.tables(slave)[frame.function]
+        origin = TABLES[frame.function]  # (where a later device's tables move it: SlaveTables)
         registers = self._values(slave, registers)
         listeners = self.listeners
         for register in registers:
@@ -325,10 +333,10 @@ class History:
             status = register.status
             if status in UNREADABLE_STATUSES:
                 event = UNREADABLE
-                changed = param(slave, address, UNREADABLE, 0, register.code, status, table)
+                changed = param(slave, address, UNREADABLE, 0, register.code, status, table, origin)
             else:
                 event = READ
-                changed = param(slave, address, READ, register.value, register.code, register.text, table)
+                changed = param(slave, address, READ, register.value, register.code, register.text, table, origin)
             if listeners:
                 for listener in listeners:
                     listener.state(frame, register, event, changed)
@@ -386,6 +394,7 @@ class History:
     def _rehome(self, slave: int, homes: bytes) -> None:
         """The slave's new device reads a table with another's code (SlaveTables): its parameters kept
         before move there, with the listeners' states, and are named by the new device."""
+        self._rehomed += 1
         self.store.rehome(slave, homes)
         for listener in self.listeners:
             listener.rehomed(slave, homes)

@@ -79,9 +79,9 @@ class SlaveTables:
     """slave -> each code's register table on the slave's device now (device_tables), asked again each
     time: the device may change under profile `auto`. Both stores and every output key parameters through
     it, so the first of them to ask after a slave's device changed sees the change: where the new device
-    reads a table with another's code (profile `auto` choosing the ATV71 after FC4 reads: its FC4 reads
-    the holding registers), `moved(slave, homes)` moves what was kept before the first event counted
-    with the new tables (homes: each table's new table, by table)."""
+    reads a table with another's code than the old one did (profile `auto` choosing the ATV71 after FC4
+    reads: its FC4 reads the holding registers; or taking it back), `moved(slave, homes)` moves what was
+    kept before the first event counted with the new tables (homes: each table's new table, by table)."""
 
     __slots__ = ("device", "given", "moved")
 
@@ -96,7 +96,9 @@ class SlaveTables:
         if given is not tables:
             self.given[slave] = tables
             homes = table_homes(tables)
-            if given is not None and self.moved is not None and homes != IDENTITY_HOMES:
+            # (back to separate tables too: what an ATV71 counted in one table of FC4 reads is an input
+            # register again when `auto` takes that choice back)
+            if given is not None and self.moved is not None and homes != table_homes(given):
                 self.moved(slave, homes)
         return tables
 
@@ -158,6 +160,15 @@ class ParameterStats:
     status: str | None = None  # the last state is this read status, not a value
     seen: bool = False  # a state (value or status) was seen
     order: int = 0  # when its state was last set (the store's count of states set): merges keep the later
+    origins: int = 0  # bit t: counted of a code whose protocol table is t (FC4: input), where rehome finds its home
+
+
+def home(origins: int, homes: bytes, table: int) -> int:
+    """The table a parameter kept in `table` moves to (rehome): homes[t] of the protocol tables t of the codes
+    that counted it (`origins`); where those are two tables now (an ATV71's CHCF read by FC3 and FC4, the
+    choice taken back) its one story cannot be parted: it stays."""
+    found = {homes[t] for t in range(len(homes)) if origins >> t & 1}
+    return found.pop() if len(found) == 1 else table
 
 
 def differ(first: ParameterStats, later: ParameterStats) -> bool:
@@ -180,7 +191,9 @@ class ParameterTable:
         self._states = 0  # states set so far (ParameterStats.order)
 
     def param(self, slave: int, address: int, event: int, value: int, code: str | None, text: str | None,
-              table: int = HOLDING_REGISTERS) -> bool:
+              table: int = HOLDING_REGISTERS, origin: int | None = None) -> bool:
+        """`table`: the register table on the slave's device now; `origin`: the code's in the protocol
+        (register_table; None: `table`)."""
         key = (slave, address, table)
         stats = self._parameters.get(key)
         created = stats is None
@@ -189,6 +202,7 @@ class ParameterTable:
                 self.dropped += 1
                 return False
             stats = self._parameters[key] = ParameterStats()
+        stats.origins |= 1 << (table if origin is None else origin)
         if code is not None and (event != CONFIRM or created):
             stats.code = code
         counter, sets_state = EVENT_RULES[event]
@@ -212,17 +226,22 @@ class ParameterTable:
         return changed
 
     def rehome(self, slave: int, homes: bytes) -> None:
-        """The slave's parameters of each table moved to homes[table] (SlaveTables). A parameter kept in
-        both is one story: its counts and changes summed, the state the later set, and one change more
-        where the two last states differ (their stories joined one after the other)."""
-        moving = sorted(key for key in self._parameters if key[0] == slave and homes[key[2]] != key[2])
-        for key in moving:
-            moved = self._parameters.pop(key)
-            home = (slave, key[1], homes[key[2]])
-            kept = self._parameters.get(home)
-            if kept is None:
-                self._parameters[home] = moved
+        """The slave's parameters moved to the tables homes gives (by table) the tables their codes read in
+        the protocol (SlaveTables, `home`). A parameter kept in both is one story: its counts and changes
+        summed, the state the later set, and one change more where the two last states differ (their
+        stories joined one after the other)."""
+        moving = sorted((key, home(stats.origins, homes, key[2])) for key, stats in self._parameters.items()
+                        if key[0] == slave)
+        for key, table in moving:
+            if table == key[2]:
                 continue
+            moved = self._parameters.pop(key)
+            target = (slave, key[1], table)
+            kept = self._parameters.get(target)
+            if kept is None:
+                self._parameters[target] = moved
+                continue
+            kept.origins |= moved.origins
             first, later = (kept, moved) if kept.order <= moved.order else (moved, kept)
             for counter in ("reads", "unreadable", "writes", "refused", "changes"):
                 setattr(kept, counter, getattr(kept, counter) + getattr(moved, counter))
