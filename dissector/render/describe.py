@@ -20,14 +20,19 @@ UNKNOWN_SUBFUNCTION = "unknown sub-function"
 _FUNCTION_NAMES = SPEC.functions
 
 @cache
+def pdu_fields() -> dict[str, Any]:
+    """data/pdu_fields.toml, read once: the plugin's fields of each PDU field, which -V and --json follow."""
+    return tomllib.loads(resources.files("dissector").joinpath("data/pdu_fields.toml").read_text(encoding="utf-8"))
+
+
+@cache
 def value_names() -> dict[str, dict[int, str]]:
     """{PDU field key: its values' names} (FC43's `mei_type`, `read_code`, `conformity`): the `values` that
     data/pdu_fields.toml gives the plugin's fields, so vw3-decode -V and --json name them as its tree does. A
     table is the spec's (data/modbus.toml [mei_types], [device_id_codes]) or one of its [names]."""
-    text = resources.files("dissector").joinpath("data/pdu_fields.toml").read_text(encoding="utf-8")
     tables = {"mei_types": SPEC.mei_types, "device_id_codes": SPEC.device_id_codes, **SPEC.names}
     names: dict[str, dict[int, str]] = {}
-    for entry in tomllib.loads(text)["field"]:
+    for entry in pdu_fields()["field"]:
         if "values" in entry:
             for pdu in entry["pdu"]:
                 names[pdu.split(".")[1]] = tables[entry["values"]]

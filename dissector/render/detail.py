@@ -6,12 +6,10 @@ is decided once and a terminal only adds colour.
 from __future__ import annotations
 
 import math
-import tomllib
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from operator import attrgetter
 from datetime import datetime, timezone
-from importlib import resources
 from typing import TYPE_CHECKING, Any
 
 from construct import ListContainer
@@ -20,7 +18,7 @@ from dissector.model import BitList, Frame, Item, Kind, Noise, Register, Registe
 from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 from dissector.protocol.printable import printable
-from dissector.render.describe import UNKNOWN_SUBFUNCTION, count_text, named_value, value_names
+from dissector.render.describe import UNKNOWN_SUBFUNCTION, count_text, named_value, pdu_fields, value_names
 from dissector.render.detail_window import NESTED_HEX_WIDTHS, hex_width, window_lines
 from dissector.render.filter_fields import CATALOGUE
 from dissector.render.summary import check_untyped, crc_text, noise_info
@@ -102,8 +100,7 @@ _LABELLED = frozenset(function for function, _key in FUNCTION_LABELS)
 def _hex_names() -> dict[str, dict[int, str]]:
     """{PDU field key: its values' names} of the plugin's named fields of base HEX (data/fields.toml's
     vw3.run_indicator, its PDU fields by data/pdu_fields.toml [pdu]), which Wireshark writes `ON (0xff)`."""
-    text = resources.files("dissector").joinpath("data/pdu_fields.toml").read_text(encoding="utf-8")
-    shows = tomllib.loads(text)["pdu"]
+    shows = pdu_fields()["pdu"]
     names: dict[str, dict[int, str]] = {}
     for entry in CATALOGUE:
         if "values" in entry and entry.get("base") == "HEX":

@@ -11,10 +11,8 @@
 """
 from __future__ import annotations
 
-import tomllib
-from importlib import resources
-
 from dissector.model import Frame, Kind
+from dissector.render.describe import pdu_fields
 from dissector.protocol.spec import SPEC
 from dissector.protocol.table import TABLE, layout_for, lift_of
 
@@ -24,9 +22,8 @@ _DIGITS = {"u8": 2, "u16": 4, "odd": 2}  # hex digits of a layout field type (`o
 def _widths() -> tuple[dict[tuple[int, Kind, str], int], dict[str, int]]:
     """({(function, kind, key): digits} of the DEC_HEX fields of each code's layout, {key: digits} of those
     of a part a field switches to (FC43's device id answer), where no two parts disagree)."""
-    text = resources.files("dissector").joinpath("data/pdu_fields.toml").read_text(encoding="utf-8")
     wanted: dict[str, set[str]] = {}  # layout: its DEC_HEX fields
-    for entry in tomllib.loads(text).get("field", ()):
+    for entry in pdu_fields().get("field", ()):
         if entry.get("base") in ("DEC_HEX", "HEX"):
             for pdu in entry.get("pdu", ()):
                 layout, _, key = pdu.partition(".")
