@@ -12,8 +12,7 @@ from pathlib import Path
 import pytest
 
 from helpers import rtu, run_cli, use_engine
-from lua_compare import compare
-from lua_harness import lua_errors, lua_items, python_items, run_tshark, write_pcap
+from lua_harness import assert_as_vw3_decode_in_one_and_two_passes, lua_errors, run_tshark, write_pcap
 
 pytestmark = pytest.mark.integration
 LATER = frozenset(["response_frame", "unanswered"])
@@ -67,9 +66,4 @@ def test_plugin_frames_after_a_take_back_are_provisional(tmp_path: Path) -> None
         infos[two_pass] = [line.split("\t")[1] for line in got.stdout.splitlines()]
     assert infos[False] == ["1", "1", "1", "", "", "1", "1", "1"]
     assert infos[True] == [""] * 8
-    one, _, _ = lua_items(pcap, two_pass=False)
-    differences = compare(python_items(pcap, one_pass=True), one, ignore=LATER)
-    assert not differences, "\n".join(differences[:40])
-    two, _, _ = lua_items(pcap)
-    differences = compare(python_items(pcap), two)
-    assert not differences, "\n".join(differences[:40])
+    assert_as_vw3_decode_in_one_and_two_passes(pcap, LATER)

@@ -12,8 +12,7 @@ from pathlib import Path
 import pytest
 
 from helpers import rtu
-from lua_compare import compare
-from lua_harness import lua_errors, lua_items, python_items, run_tshark, write_pcap
+from lua_harness import assert_as_vw3_decode_in_one_and_two_passes, lua_errors, run_tshark, write_pcap
 
 pytestmark = pytest.mark.integration
 LATER = frozenset(["response_frame", "unanswered"])  # (what one pass cannot know when it shows a request)
@@ -30,16 +29,6 @@ def _infos(pcap: Path, two_pass: bool) -> list[str]:
     return got.stdout.splitlines()
 
 
-def _same_as_vw3_decode(pcap: Path, one_pass: bool = True) -> None:
-    if one_pass:
-        one, _, _ = lua_items(pcap, two_pass=False)
-        differences = compare(python_items(pcap, one_pass=True), one, ignore=LATER)
-        assert not differences, "\n".join(differences[:40])
-    two, _, _ = lua_items(pcap)
-    differences = compare(python_items(pcap), two)
-    assert not differences, "\n".join(differences[:40])
-
-
 def test_noise_read_as_a_long_answer_before_records_that_are_frames(tmp_path: Path) -> None:
     records = [(REQUEST, 0.0), (ANSWER, 0.01), (bytes.fromhex("ffff01b0") + REQUEST, 2.0), (ANSWER, 2.06),
                (REQUEST, 4.0), (ANSWER, 4.01)]
@@ -50,7 +39,7 @@ def test_noise_read_as_a_long_answer_before_records_that_are_frames(tmp_path: Pa
         f"{READ} [provisional]", f"{ANSWERED} [provisional]", "noise (1 byte so far); (11 bytes continue)",
         f"noise (4 bytes) from #3; {READ} [provisional] from #3; {ANSWERED}", READ, ANSWERED]
     assert _infos(pcap, two_pass=True) == [READ, ANSWERED, f"noise (4 bytes); {READ}", ANSWERED, READ, ANSWERED]
-    _same_as_vw3_decode(pcap)
+    assert_as_vw3_decode_in_one_and_two_passes(pcap, LATER)
 
 
 def test_a_request_cut_short_by_the_next_record(tmp_path: Path) -> None:
@@ -61,4 +50,4 @@ def test_a_request_cut_short_by_the_next_record(tmp_path: Path) -> None:
         f"{READ_ONE} [provisional]", "(5 bytes continue)", f"noise (5 bytes) from #2; {READ_ONE} [provisional]",
         f"{ONE_ANSWERED} [provisional]"]
     assert _infos(pcap, two_pass=True) == [READ_ONE, "noise (5 bytes)", READ_ONE, ONE_ANSWERED]
-    _same_as_vw3_decode(pcap)
+    assert_as_vw3_decode_in_one_and_two_passes(pcap, LATER)
