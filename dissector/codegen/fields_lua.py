@@ -124,6 +124,8 @@ def proto_fields() -> list[dict[str, Any]]:
         if ftype not in INTEGER | PLAIN or (ftype in PLAIN and ("base" in entry or "values" in entry)):
             raise GenerateError(f"data/fields.toml: {entry['filter']}: no ProtoField.{ftype} with those arguments")
         field = {"abbr": entry["filter"], "ftype": ftype, "title": entry["title"], "help": entry["help"]}
+        if "name" in entry:
+            field["name"] = entry["name"]  # (a filter two fields share, of two widths: vw3.status)
         if ftype in PLAIN:
             field["plain"] = True  # (its constructor takes (abbr, title, help))
         for key in ("base", "values"):
@@ -132,12 +134,28 @@ def proto_fields() -> list[dict[str, Any]]:
                 # (a value-string table: TOML keys are strings, Wireshark's are the numbers)
                 field[key] = {int(k): v for k, v in value.items()} if isinstance(value, dict) else value
         out.append(field)
+    names = [pf_name(entry) for entry in CATALOGUE + _pdu_catalogue()["field"] if "filter" in entry]
+    for name in {name for name in names if names.count(name) > 1}:
+        raise GenerateError(f"data/pdu_fields.toml: two fields named {name}: give one a `name`")
+    # (Wireshark's filters take a shared name's type from the field registered last, lua/src/fields.lua: the
+    # widest last, or a filter of a wider value is refused, `"0xffff" too big for this field`)
+    widest: dict[str, int] = {}
+    for field in out:
+        width = int(field["ftype"][4:]) if field["ftype"].startswith("uint") else 0
+        if width < widest.get(field["abbr"], 0):
+            raise GenerateError(f"data/pdu_fields.toml: {field['abbr']}: list its widest field last")
+        widest[field["abbr"]] = width
     return out
 
 
+def pf_name(entry: dict[str, Any]) -> str:
+    """The plugin's pf key of a field (lua/src/fields.lua): its `name`, else its filter without `vw3.`, dots
+    as `_`."""
+    return entry.get("name") or entry["filter"][4:].replace(".", "_")
+
+
 def pdu_fields() -> dict[str, list[str]]:
-    """The fields that show each PDU field, {"LAYOUT.FIELD": [pf name, ...]} (pf.NAME: the filter without
-    `vw3.`, dots as `_`), a text field's string field first; every field of every layout and part
+    """The fields that show each PDU field, {"LAYOUT.FIELD": [pf name, ...]} (pf_name), a text field's string field first; every field of every layout and part
     (data/modbus.toml) is shown so or listed in data/pdu_fields.toml's pdu_shown, a switch by the part it
     chose."""
     from dissector.protocol.shapes import PARTS, SHAPES, Type
@@ -146,7 +164,7 @@ def pdu_fields() -> dict[str, list[str]]:
     out: dict[str, list[str]] = {}
     for entry in CATALOGUE + pdu["field"]:
         for name in entry.get("pdu", pdu["pdu"].get(entry.get("filter"), ())):
-            out.setdefault(name, []).append(entry["filter"][4:].replace(".", "_"))
+            out.setdefault(name, []).append(pf_name(entry))
             if entry["ftype"] == "string":  # (a text's string field first, its bytes' after)
                 out[name].insert(0, out[name].pop())
     shown = set(pdu["pdu_shown"])

@@ -18,10 +18,13 @@ local VALUES = { kind = NUMBER_KIND, functions = FUNCTIONS, exceptions = EXCEPTI
   device_id_codes = DATA.fields.names.device_id_codes }
 
 -- The fields, stated in data/fields.toml with vw3-decode's filter keys (codegen/fields_lua.py):
--- pf.NAME is vw3.NAME's field, dots as `_` (vw3.reg.address: pf.reg_address).
-local pf = {}
+-- pf.NAME is vw3.NAME's field, dots as `_` (vw3.reg.address: pf.reg_address), or f.name where two fields
+-- share a filter (FC7's 8-bit vw3.status: pf.exception_status).
+-- Registered in the catalogue's order: a filter names the type of the field of its name registered last
+-- (vw3.status: FC11's word after FC7's byte, so `vw3.status == 0xffff` is a filter).
+local pf, field_list = {}, {}
 for _, f in ipairs(DATA.fields.fields) do
-  local name = string.gsub(string.sub(f.abbr, 5), "%.", "_")
+  local name = f.name or string.gsub(string.sub(f.abbr, 5), "%.", "_")
   local values = f.values
   -- (else a [names] table of data/modbus.toml: FC43/14's conformity levels)
   if type(values) == "string" then values = VALUES[values] or DATA.names[values] end
@@ -30,13 +33,12 @@ for _, f in ipairs(DATA.fields.fields) do
   else
     pf[name] = ProtoField[f.ftype](f.abbr, f.title, f.base and base[f.base], values, nil, f.help)
   end
+  field_list[#field_list + 1] = pf[name]
 end
 
 -- The protocol's fields: the catalogue's (pf), then the per-parameter fields, one per row of the built-in
 -- register maps (DATA.fields.parameters, codegen/fields_lua.py: vw3.atv71.rfr, ...), by the row they follow
 -- (tree.lua add_register).
-local field_list = {}
-for _, field in pairs(pf) do field_list[#field_list + 1] = field end
 local PARAMETER_FIELDS = {}
 for _, p in ipairs(DATA.fields.parameters) do
   local field = ProtoField.double(p.abbr, p.title)

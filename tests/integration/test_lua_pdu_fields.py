@@ -43,7 +43,7 @@ T0 = 1700000000.0
 # mode, slave, function, profile, CRC, links), as tshark -V prints them.
 TREES: list[tuple[str, list[str]]] = [
     ("VW3 Modbus RTU, 1 Read Exception Status request", []),
-    ("VW3 Modbus RTU, 1 Read Exception Status response status 0x6D", ["    Status: 109 (0x006d)"]),
+    ("VW3 Modbus RTU, 1 Read Exception Status response status 0x6D", ["    Status: 109 (0x6d)"]),
     ("VW3 Modbus RTU, 1 Diagnostics request 0Bh Return Bus Message Count = 0", [
         "    Sub-function: Return Bus Message Count (11)", "    Data: 0000",
         "    [Sub-function name: Return Bus Message Count]"]),
