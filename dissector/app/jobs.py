@@ -231,6 +231,19 @@ def run_captures(captures: list[Capture], settings: JobSettings, jobs: int, sche
             report(future.result())
 
 
+def _name(path: str) -> str:
+    """A path as its bytes: an undecodable byte as \\xNN (the \\udcNN Python holds it as means nothing to a user)."""
+    return os.fsencode(path).decode("utf-8", "backslashreplace")
+
+
+def _need_utf8(path: str, message: str) -> None:
+    """Refuse a path (made absolute, as the dataset stores it) that pyarrow cannot take as a string."""
+    try:
+        os.path.abspath(path).encode("utf-8")
+    except UnicodeEncodeError:
+        raise UsageError(message) from None
+
+
 def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog: str) -> int:
     """The --parquet run: one line per capture written, errors one line each; exit 2 if any failed."""
     from dissector.app.options import baud_given, shown
@@ -244,6 +257,10 @@ def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog:
     for path in args.files:
         if not os.path.isfile(path):
             raise UsageError(f"{path}: no such file")
+        _need_utf8(path, f"{_name(path)}: its path is not UTF-8 text, which the dataset's file column holds:"
+                         " rename it or decode it from a UTF-8 folder")
+    _need_utf8(args.parquet, f"--parquet {_name(args.parquet)}: the folder's path is not UTF-8 text, which"
+                             " pyarrow writes to: give another folder")
     created = not os.path.exists(args.parquet)
     if not created and not os.path.isdir(args.parquet):
         raise UsageError(f"--parquet {args.parquet}: not a directory (DIR is the dataset's folder)")
