@@ -72,6 +72,7 @@ static const DenseKind POLL_KIND = {sizeof(Poll), sizeof(PollKey), 768, poll_has
 typedef struct {
     PyObject_HEAD
     Dense params;                 /* of Param, in the order first seen */
+    Dense parts;                  /* of Param, keyed by origin for table: the parts of those two tables' codes count (_parts.h) */
     Dense polls;                  /* of Poll, in the order first seen, as PollCycle's dict keeps them */
     size_t max_keys;              /* stats_store.MAX_KEYS, given at creation */
     size_t max_params;            /* stats_store.MAX_PARAMETERS: parameters kept at most */
@@ -127,10 +128,11 @@ static inline int param_state(Param *p, unsigned value, PyObject *status) {
 }
 
 /* An event's count (stats_store.EVENT_RULES); 1: it sets the state too (a value or a status seen). */
+static const struct { int counter, state; } event_rules[EVENTS] = EVENT_RULES;
+static inline int param_sets_state(int event) { return event_rules[event].state; }
 static int param_count(Param *p, int event) {
-    static const struct { int counter, state; } rules[EVENTS] = EVENT_RULES;
-    if (rules[event].counter >= 0) p->counts[rules[event].counter]++;
-    return rules[event].state;
+    if (event_rules[event].counter >= 0) p->counts[event_rules[event].counter]++;
+    return event_rules[event].state;
 }
 
 /* namer(address, value): the (text, code) a slave's device gives a register, a new reference; NULL with an
@@ -156,20 +158,16 @@ static int take_code(Param *p, PyObject *namer, unsigned address, unsigned value
     return 0;
 }
 
-/* One register's event: its code given (`code`, the Python stages'), or asked of `namer` (the slave's device,
- * for a transaction the engine shows: once per parameter and namer, only where the device names the address);
- * CONFIRM sets it only on a parameter's first sight (ParameterTable.param). An event that sets the state
- * keeps the value, or the read status `status`, and the value's text (`text`, the Python stages', or NULL: the
- * namer's, asked when the report is made). 1: the state changed, 0: not (or not kept), -1: an error.
- * (Inlined: in words_event, once per register, the constant arguments fold away.) */
-static inline __attribute__((always_inline)) int param_event(Stats *st, int slave, int table, int origin,
-                                                              unsigned address, unsigned value, int event,
-                                                              PyObject *code, PyObject *status, PyObject *text,
-                                                              PyObject *namer, int mapped) {
-    int created;
-    Param *p = param_get(st, slave, table, address, &created);
-    if (p == NULL) return PyErr_Occurred() ? -1 : 0;
-    p->origins |= (uint8_t)(1u << origin);
+/* One event told to parameter p (`created`: just made), its state's order `order` if it sets one: its code
+ * given (`code`, the Python stages'), or asked of `namer` (the slave's device, for a transaction the engine
+ * shows: once per parameter and namer, only where the device names the address); CONFIRM sets it only on a
+ * parameter's first sight (ParameterTable.param). An event that sets the state keeps the value, or the read
+ * status `status`, and the value's text (`text`, the Python stages', or NULL: the namer's, asked when the
+ * report is made). 1: the state changed, 0: not, -1: an error. (stats_store.apply_event) */
+static inline __attribute__((always_inline)) int param_apply(Param *p, int created, unsigned address,
+                                                              unsigned value, int event, PyObject *code,
+                                                              PyObject *status, PyObject *text, PyObject *namer,
+                                                              int mapped, uint64_t order) {
     if (event != EVENT_CONFIRM || created) {
         if (code != NULL && code != Py_None) Py_XSETREF(p->code, Py_NewRef(code));
         else if (code == NULL && mapped && namer != NULL && namer != Py_None && p->code_namer != namer &&
@@ -178,11 +176,39 @@ static inline __attribute__((always_inline)) int param_event(Stats *st, int slav
     }
     if (!param_count(p, event)) return 0;
     int changed = param_state(p, value, status);
-    p->order = ++st->states;
+    p->order = order;
     if (changed < 0 || status != NULL) return changed;
     p->last_mapped = (uint8_t)mapped;
     Py_XSETREF(p->text, Py_XNewRef(text));
     if (p->namer != namer) Py_XSETREF(p->namer, Py_XNewRef(namer));
+    return changed;
+}
+
+/* The objects a parameter holds released, each once (the store's end, a merge, a failed rehome). */
+static void param_release(Param *p) {
+    PyObject **held[] = {&p->text, &p->namer, &p->code, &p->code_namer, &p->status};
+    for (size_t k = 0; k < sizeof held / sizeof *held; k++) Py_CLEAR(*held[k]);
+}
+
+#include "_parts.h" /* a parameter two protocol tables' codes count: their parts, the moves of a new device */
+
+/* One register's event (param_apply) to the parameter of (slave, table, address) (made on first sight), and
+ * to its origin's part where codes of two protocol tables count it (part_event). 1: the state changed, 0: not
+ * (or not kept), -1: an error. (Inlined: in words_event, once per register, the constant arguments fold away.) */
+static inline __attribute__((always_inline)) int param_event(Stats *st, int slave, int table, int origin,
+                                                              unsigned address, unsigned value, int event,
+                                                              PyObject *code, PyObject *status, PyObject *text,
+                                                              PyObject *namer, int mapped) {
+    int created;
+    Param *p = param_get(st, slave, table, address, &created);
+    if (p == NULL) return PyErr_Occurred() ? -1 : 0;
+    uint8_t bit = (uint8_t)(1u << origin);
+    if ((p->origins | bit) != bit &&
+        part_event(st, p, slave, origin, address, value, event, code, status, text, namer, mapped) < 0)
+        return -1;
+    p->origins |= bit;
+    int changed = param_apply(p, created, address, value, event, code, status, text, namer, mapped, st->states + 1);
+    if (changed >= 0 && param_sets_state(event)) st->states++;
     return changed;
 }
 
@@ -327,14 +353,9 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
 }
 
 /* ---- the Python object ------------------------------------------------------------------------- */
-/* The objects a parameter holds released, each once (the store's end, a merge, a failed rehome). */
-static void param_release(Param *p) {
-    PyObject **held[] = {&p->text, &p->namer, &p->code, &p->code_namer, &p->status};
-    for (size_t k = 0; k < sizeof held / sizeof *held; k++) Py_CLEAR(*held[k]);
-}
-
 static void stats_dealloc(Stats *st) {
     for (size_t k = 0; k < st->params.count; k++) param_release(&PARAMS(st)[k]);
+    for (size_t k = 0; k < st->parts.count; k++) param_release(&((Param *)st->parts.items)[k]);
     Py_XDECREF(st->report);
     Py_XDECREF(st->device_tables);
     for (int k = 0; k < 256; k++) {
@@ -342,6 +363,7 @@ static void stats_dealloc(Stats *st) {
         Py_XDECREF(st->tables_namer[k]);
     }
     dense_free(&st->params);
+    dense_free(&st->parts);
     dense_free(&st->polls);
     for (int k = 0; k < TALLIES; k++) dense_free(&st->tallies[k].d);
     PyMem_Free(st->bus.outages);
@@ -393,74 +415,6 @@ static PyObject *stats_rename(Stats *st, PyObject *namers) {
         p->last_mapped = 1;
     }
     Py_RETURN_NONE;
-}
-
-/* ParameterTable.rehome's merge: `moved`'s story joined to `kept`'s (the same parameter, kept in two tables):
- * counts and changes summed, one change more where the two last states differ, the later state kept; `moved`'s
- * references taken or released. 0, or -1 with an exception set. */
-static int param_merge(Param *kept, Param *moved) {
-    for (int j = 0; j < PARAM_COUNTS; j++) kept->counts[j] += moved->counts[j];
-    kept->origins |= moved->origins;
-    Param *first = kept->order <= moved->order ? kept : moved, *later = first == kept ? moved : kept;
-    if (first->has_last && later->has_last) {
-        int same = same_state(first, later->last, later->status);
-        if (same < 0) return -1;
-        if (!same) kept->counts[PARAM_CHANGES]++;
-    }
-    if (later == moved && moved->has_last) {
-        Py_XSETREF(kept->status, moved->status);
-        Py_XSETREF(kept->text, moved->text);
-        Py_XSETREF(kept->namer, moved->namer);
-        moved->status = moved->text = moved->namer = NULL; /* (taken) */
-        kept->last = moved->last, kept->has_last = 1, kept->last_mapped = moved->last_mapped, kept->order = moved->order;
-    }
-    if (kept->code == NULL) kept->code = moved->code, moved->code = NULL;
-    param_release(moved);
-    return 0;
-}
-
-/* stats_store.home: the table a parameter moves to, homes[t] of its origins t where that is one table (else its own). */
-static int param_home(const Param *p, const char *homes, Py_ssize_t size) {
-    int found = -1;
-    for (Py_ssize_t t = 0; t < size; t++) {
-        if (!(p->origins >> t & 1) || found == (uint8_t)homes[t]) continue;
-        if (found >= 0) return PARAM_TABLE(p->key);
-        found = (uint8_t)homes[t];
-    }
-    return found < 0 ? (int)PARAM_TABLE(p->key) : found;
-}
-
-/* rehome(slave, homes): ParameterTable.rehome, the slave's parameters moved to the tables homes (bytes, by table:
- * stats_store.SlaveTables) gives their codes' protocol tables: the table built again, in the order first seen. */
-static PyObject *stats_rehome(Stats *st, PyObject *args) {
-    int slave;
-    const char *homes;
-    Py_ssize_t size;
-    if (!PyArg_ParseTuple(args, "iy#", &slave, &homes, &size)) return NULL;
-    if (slave < 0 || slave > 255 || size > PARAM_TABLES)
-        return PyErr_Format(PyExc_ValueError, "rehome: slave 0..255, %d tables at most", PARAM_TABLES);
-    if (tables_valid(homes, size, "rehome: tables") < 0) return NULL;
-    Dense rebuilt = {0};
-    for (size_t k = 0; k < st->params.count; k++) {
-        Param *p = &PARAMS(st)[k];
-        uint32_t key = (int)PARAM_SLAVE(p->key) == slave ? param_key(slave, param_home(p, homes, size),
-                                                                     PARAM_ADDRESS(p->key)) : p->key;
-        Param *kept = dense_find(&rebuilt, &PARAM_KIND, &key);
-        if (kept != NULL) {
-            if (param_merge(kept, p) < 0) goto failed;
-            continue;
-        }
-        if ((kept = dense_add(&rebuilt, &PARAM_KIND, &key, 0)) == NULL) goto failed;
-        *kept = *p, kept->key = key;
-        memset(p, 0, sizeof *p); /* (its references are kept's now) */
-    }
-    dense_free(&st->params);
-    st->params = rebuilt;
-    Py_RETURN_NONE;
-failed: /* no memory (the run ends on it): what was moved is dropped, each reference released once */
-    for (size_t k = 0; k < rebuilt.count; k++) param_release(&((Param *)rebuilt.items)[k]);
-    dense_free(&rebuilt);
-    return NULL;
 }
 
 /* A request key tuple (slave, function[, ...]) of up to 6 ints into *fields: 0 or -1. */
@@ -867,7 +821,7 @@ static PyMethodDef stats_methods[] = {
     {"rename", (PyCFunction)stats_rename, METH_O,
      "rename({slave: namer}): name the kept values of these slaves as their new profile does."},
     {"rehome", (PyCFunction)stats_rehome, METH_VARARGS,
-     "rehome(slave, homes): move the slave's parameters of each table to homes[table] (bytes by table)."},
+     "rehome(slave, homes): move the slave's parameters to the tables homes (bytes by table) gives their codes' tables"},
     {"poll", (PyCFunction)stats_poll, METH_VARARGS, "poll(key, frame number, failed, time=None): a good request."},
     {"poll_fail", (PyCFunction)stats_poll_fail, METH_O, "poll_fail(key): its answer was an exception."},
     {"bus_line", (PyCFunction)stats_bus_line, METH_VARARGS, "bus_line(char_time, t35, timeout, new_input)"},

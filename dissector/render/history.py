@@ -56,7 +56,8 @@ reads a table with another's code (the ATV71 chosen after FC4 reads: its FC4 rea
 registers), the parameters kept move to that table first (`store.rehome`, listeners' `rehomed(slave,
 homes)`): --stats shows one CHCF, not an input register beside it. Taken back (`generic` after the ATV71),
 what FC4 alone counted moves back to the input registers (the store keeps each parameter's codes' tables:
-stats_store.home); a parameter both tables counted stays one (its story cannot be parted).
+stats_store.homes_of), and a parameter both tables' codes counted parts into the story each told (the store
+keeps those too: ParameterTable._part), as the file counts them.
 """
 from __future__ import annotations
 

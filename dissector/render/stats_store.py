@@ -18,7 +18,8 @@ A register's code is kept when it has one; CONFIRM sets it on a parameter's firs
 A parameter's state is its last value or read status; `param` answers whether the state changed (the
 first state is no change), and `changes` counts those: the same changes `--watch` prints.
 `rename({slave: namer})` names the kept values of slaves whose profile was chosen after they were read;
-`rehome(slave, homes)` moves a slave's parameters to the tables its new device reads them with (SlaveTables).
+`rehome(slave, homes)` moves a slave's parameters to the tables its new device reads them with (SlaveTables),
+and parts one that codes of two protocol tables counted where those are apart again (ParameterTable._part).
 """
 from __future__ import annotations
 
@@ -26,7 +27,7 @@ import os
 import sys
 from collections.abc import Callable, Iterator
 from itertools import chain
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 from dissector.devices.profiles import (
@@ -163,12 +164,57 @@ class ParameterStats:
     origins: int = 0  # bit t: counted of a code whose protocol table is t (FC4: input), where rehome finds its home
 
 
-def home(origins: int, homes: bytes, table: int) -> int:
-    """The table a parameter kept in `table` moves to (rehome): homes[t] of the protocol tables t of the codes
-    that counted it (`origins`); where those are two tables now (an ATV71's CHCF read by FC3 and FC4, the
-    choice taken back) its one story cannot be parted: it stays."""
-    found = {homes[t] for t in range(len(homes)) if origins >> t & 1}
-    return found.pop() if len(found) == 1 else table
+def origins_of(origins: int) -> list[int]:
+    """The protocol tables of a parameter's `origins` (ParameterStats.origins), in order."""
+    return [table for table in range(origins.bit_length()) if origins >> table & 1]
+
+
+def homes_of(origins: int, homes: bytes) -> set[int]:
+    """The tables a parameter's codes read on a device of these homes (SlaveTables, table_homes): one, where
+    it moves (rehome); two, where its codes' tables are apart there."""
+    return {homes[table] for table in origins_of(origins)}
+
+
+def join(kept: ParameterStats, moved: ParameterStats) -> None:
+    """`moved`'s story joined to `kept`'s (the same parameter, kept in two tables, or a part's): counts and
+    changes summed, the state the later set, one change more where the two last states differ (their
+    stories joined one after the other)."""
+    kept.origins |= moved.origins
+    first, later = (kept, moved) if kept.order <= moved.order else (moved, kept)
+    for counter in ("reads", "unreadable", "writes", "refused", "changes"):
+        setattr(kept, counter, getattr(kept, counter) + getattr(moved, counter))
+    if first.seen and later.seen and differ(first, later):
+        kept.changes += 1
+    if later is moved and moved.seen:
+        kept.last, kept.last_text, kept.status, kept.order = moved.last, moved.last_text, moved.status, moved.order
+        kept.seen = True
+    if kept.code is None:
+        kept.code = moved.code
+
+
+def apply_event(stats: ParameterStats, created: bool, event: int, value: int, code: str | None,
+                text: str | None, order: int) -> bool:
+    """ParameterTable.param's event told to `stats` (`order`: its state's, if it sets one): changed?"""
+    if code is not None and (event != CONFIRM or created):
+        stats.code = code
+    counter, sets_state = EVENT_RULES[event]
+    if counter is not None:
+        setattr(stats, counter, getattr(stats, counter) + 1)
+    if not sets_state:
+        return False
+    if event == UNREADABLE:  # 16#8000 stands for "no value", not a value: the state is the status
+        changed = stats.seen and stats.status != text
+        stats.status = text
+    else:
+        changed = stats.seen and (stats.status is not None or value != stats.last)
+        stats.status = None
+        stats.last = value
+        stats.last_text = text
+    stats.seen = True
+    stats.order = order
+    if changed:
+        stats.changes += 1
+    return changed
 
 
 def differ(first: ParameterStats, later: ParameterStats) -> bool:
@@ -189,6 +235,8 @@ class ParameterTable:
         self._max_params = max_params
         self.dropped = 0  # events of parameters beyond max_params, not kept
         self._states = 0  # states set so far (ParameterStats.order)
+        # By (slave, address, origin): the story of each protocol table's codes of a parameter two count (_part)
+        self._parts: dict[tuple[int, int, int], ParameterStats] = {}
 
     def param(self, slave: int, address: int, event: int, value: int, code: str | None, text: str | None,
               table: int = HOLDING_REGISTERS, origin: int | None = None) -> bool:
@@ -202,56 +250,65 @@ class ParameterTable:
                 self.dropped += 1
                 return False
             stats = self._parameters[key] = ParameterStats()
-        stats.origins |= 1 << (table if origin is None else origin)
-        if code is not None and (event != CONFIRM or created):
-            stats.code = code
-        counter, sets_state = EVENT_RULES[event]
-        if counter is not None:
-            setattr(stats, counter, getattr(stats, counter) + 1)
-        if not sets_state:
-            return False
-        if event == UNREADABLE:  # 16#8000 stands for "no value", not a value: the state is the status
-            changed = stats.seen and stats.status != text
-            stats.status = text
-        else:
-            changed = stats.seen and (stats.status is not None or value != stats.last)
-            stats.status = None
-            stats.last = value
-            stats.last_text = text
-        stats.seen = True
-        self._states += 1
-        stats.order = self._states
-        if changed:
-            stats.changes += 1
+        bit = 1 << (table if origin is None else origin)
+        if stats.origins | bit != bit:  # codes of two protocol tables count it: each keeps its story too
+            self._part(slave, address, stats, bit, event, value, code, text)
+        stats.origins |= bit
+        changed = apply_event(stats, created, event, value, code, text, self._states + 1)
+        if EVENT_RULES[event][1]:
+            self._states += 1
         return changed
+
+    def _part(self, slave: int, address: int, stats: ParameterStats, bit: int, event: int, value: int,
+              code: str | None, text: str | None) -> None:
+        """The event of a parameter two protocol tables' codes count (an ATV71's 8502 read by FC4 and
+        written by FC6) told to its origin's part too (`_parts`, by slave, address, origin): the story that
+        code's table alone tells, which the parameter parts into if the choice is taken back (rehome)."""
+        parts = self._parts
+        if stats.origins & (stats.origins - 1) == 0:  # its second origin: the story so far is the first's
+            parts[(slave, address, stats.origins.bit_length() - 1)] = replace(stats)
+        key = (slave, address, bit.bit_length() - 1)
+        part = parts.get(key)
+        if created := part is None:
+            part = parts[key] = ParameterStats(origins=bit)
+        apply_event(part, created, event, value, code, text, self._states + 1)
 
     def rehome(self, slave: int, homes: bytes) -> None:
         """The slave's parameters moved to the tables homes gives (by table) the tables their codes read in
-        the protocol (SlaveTables, `home`). A parameter kept in both is one story: its counts and changes
-        summed, the state the later set, and one change more where the two last states differ (their
-        stories joined one after the other)."""
-        moving = sorted((key, home(stats.origins, homes, key[2])) for key, stats in self._parameters.items()
-                        if key[0] == slave)
-        for key, table in moving:
-            if table == key[2]:
+        the protocol (SlaveTables, `homes_of`); one whose codes' tables are apart now (an ATV71's 8502 read
+        by FC4 and written by FC6, the choice taken back) parts into the stories each told (`_part`).
+        Two parameters in one table are one story (`_join`)."""
+        parameters, parts = self._parameters, self._parts
+        moving = sorted((key, stats) for key, stats in parameters.items() if key[0] == slave)
+        for key, _stats in moving:
+            del parameters[key]
+        for (_slave, address, table), stats in moving:
+            tables = homes_of(stats.origins, homes)
+            pieces = [parts.pop((slave, address, origin), None) for origin in origins_of(stats.origins)]
+            if len(tables) < 2 or None in pieces:  # (one home: the parts stay its own)
+                parts.update({(slave, address, piece.origins.bit_length() - 1): piece for piece in pieces if piece})
+                self._join((slave, address, tables.pop() if len(tables) == 1 else table), stats)
                 continue
-            moved = self._parameters.pop(key)
-            target = (slave, key[1], table)
-            kept = self._parameters.get(target)
-            if kept is None:
-                self._parameters[target] = moved
-                continue
-            kept.origins |= moved.origins
-            first, later = (kept, moved) if kept.order <= moved.order else (moved, kept)
-            for counter in ("reads", "unreadable", "writes", "refused", "changes"):
-                setattr(kept, counter, getattr(kept, counter) + getattr(moved, counter))
-            if first.seen and later.seen and differ(first, later):
-                kept.changes += 1
-            if later is moved and moved.seen:
-                kept.last, kept.last_text, kept.status, kept.order = moved.last, moved.last_text, moved.status, moved.order
-                kept.seen = True
-            if kept.code is None:
-                kept.code = moved.code
+            for piece in pieces:
+                self._join((slave, address, homes[piece.origins.bit_length() - 1]), piece)  # type: ignore[union-attr]
+
+    def _join(self, key: tuple[int, int, int], moved: ParameterStats) -> None:
+        """`moved` kept at `key`; joined to the parameter kept there: one story (join), its parts kept
+        where their origins are two now."""
+        kept = self._parameters.setdefault(key, moved)
+        if kept is moved:
+            return
+        origins = kept.origins | moved.origins
+        if origins & (origins - 1):
+            parts = self._parts
+            for stats in (kept, moved):
+                if stats.origins & (stats.origins - 1) == 0:  # one origin: its story is that origin's
+                    part = (key[0], key[1], stats.origins.bit_length() - 1)
+                    if part in parts:
+                        join(parts[part], replace(stats))
+                    else:
+                        parts[part] = replace(stats)
+        join(kept, moved)
 
     def rename(self, namers: dict[int, Any]) -> None:
         for (slave, address, _table), stats in self._parameters.items():
