@@ -27,6 +27,7 @@ from dissector.sources.compressed import HEADER_BYTES, Decompressed, compression
 from dissector.sources.dumps import dump_tool, read_dump
 from dissector.sources.encoding import Encoding, decoded, marked, text_input
 from dissector.sources.hexdump import CONTROL, characters, looks_like_hexdump, read_hexdump
+from dissector.sources.packetdump import looks_like_packet_dump, read_packet_dump
 from dissector.sources.notation import DECIMAL, HEX, Notation
 from dissector.sources.pcap import is_pcap, read_pcap
 from dissector.sources.pcapng import is_pcapng, read_pcapng
@@ -37,11 +38,12 @@ __all__ = ["FORMATS", "Source", "SourceError", "detect_format", "open_source"]
 
 # --format values -> Source.format
 FORMATS = {"raw": "raw", "pcap": "pcap", "pcapng": "pcapng", "hex": "hexdump", "hexdump": "hexdump",
-           "decimal": "hexdump", "ascii": "ascii", "xxd": "xxd", "hexdump-C": "hexdump-C", "traffic": "traffic"}
+           "decimal": "hexdump", "ascii": "ascii", "xxd": "xxd", "hexdump-C": "hexdump-C", "traffic": "traffic",
+           "tshark-x": "tshark-x"}
 # A format given for a one-frame-a-line dump also says how its numbers are written.
 NOTATIONS = {"hex": HEX, "hexdump": HEX, "decimal": DECIMAL}
 MODES = ("rtu", "ascii")
-TEXT_FORMATS = frozenset({"hexdump", "xxd", "hexdump-C", "traffic", "ascii"})  # read as text when a BOM says so
+TEXT_FORMATS = frozenset({"hexdump", "xxd", "hexdump-C", "traffic", "ascii", "tshark-x"})  # read as text when a BOM says so
 SNIFF_BYTES = 512  # enough to see a magic number or a few text lines
 SNIFF_LINES = 4  # a text sample with this many lines is enough to judge
 SNIFF_COMMENTS = 65536  # but a hex dump's header of comments is read to its first data line, this far
@@ -67,6 +69,7 @@ READERS: dict[str, Reader] = {
     "xxd": read_dump("xxd"),
     "hexdump-C": read_dump("hexdump-C"),
     "traffic": read_traffic,  # Modbus Poll / Modbus Slave traffic logs
+    "tshark-x": read_packet_dump,  # tshark -x, vw3-decode -x
 }
 
 
@@ -116,6 +119,8 @@ def detect_format(sample: bytes, complete: bool) -> tuple[str, str | None]:
     tool = dump_tool(text, complete)
     if tool is not None:
         return tool, None
+    if looks_like_packet_dump(text, complete):
+        return "tshark-x", None
     if looks_like_hexdump(text, complete):
         return "hexdump", None
     # Most lines of a format and a few not (a typo, a cut line, a note without `#`): that format, whose
