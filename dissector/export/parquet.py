@@ -24,7 +24,7 @@ from dissector.errors import UsageError
 from dissector.model import Item, Stamp
 from dissector.render.history import UNREADABLE_STATUSES
 from dissector.render.jsonout import item_to_dict
-from dissector.render.registers import MASKS, register_rows
+from dissector.render.registers import register_rows
 from dissector.render.stats_store import register_table
 
 ROWS_PER_GROUP = 1 << 16  # rows kept before a row group is written: memory stays flat
@@ -181,11 +181,10 @@ class CaptureTables:
             if comments and id(item) in comments:
                 row["comments"] = comments[id(item)]
             frames.add(row)
-            if "registers" in record or "bits" in record or record.get("function") in MASKS:
+            if "registers" in record or "bits" in record:
                 words = [element.get("words", 1) for element in record.get("registers") or []]
                 for index, register in enumerate(register_rows(record, item)):  # (registers first, then bits)
-                    if "words" not in register:  # (an FC22 row has its own: 1)
-                        register["words"] = words[index] if index < len(words) else None
+                    register["words"] = words[index] if index < len(words) else None
                     register.update(common, time=time)
                     registers.add(register)
                     self._status(register, time)

@@ -21,6 +21,7 @@ from dissector.protocol.printable import printable
 from dissector.render.describe import UNKNOWN_SUBFUNCTION, count_text, named_value, pdu_fields, value_names
 from dissector.render.detail_window import NESTED_HEX_WIDTHS, hex_width, window_lines
 from dissector.render.filter_fields import CATALOGUE
+from dissector.render.registers import MASKS, mask_register
 from dissector.render.summary import check_untyped, crc_text, noise_info
 from dissector.render.timefmt import whole_micros
 
@@ -416,8 +417,13 @@ def _body_lines(detail: _Detail, frame: Frame) -> None:
     rtu = frame.mode == "rtu"
     if frame.span_label is not None:  # --address-style plc: the span as the summary shows it
         add(f"        PLC references{' (read)' if frame.function == 23 else ''}: {frame.span_label}")
-    if frame.registers:
-        _register_lines(detail, frame.registers)
+    registers = frame.registers
+    if not registers and frame.function in MASKS:  # (FC22's register, as --json lists it and the plugin shows it)
+        mask = mask_register(frame)
+        if mask is not None:
+            registers = [Register(mask["address"], mask["value"], text=mask["text"], label=mask.get("label"))]
+    if registers:
+        _register_lines(detail, registers)
     bits = frame.bits
     if bits is not None:
         add(f"        Bits ({len(bits)})")

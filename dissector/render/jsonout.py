@@ -15,6 +15,7 @@ from dissector.model import Bit, BitList, Frame, Item, Kind, Noise, Register, Re
 from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 from dissector.render.describe import value_names
+from dissector.render.registers import MASKS, mask_register
 from dissector.render.summary import check_untyped
 
 
@@ -142,6 +143,8 @@ def item_to_dict(item: Item, fields: bool = True) -> dict[str, Any]:
     out = _head(frame)
     if frame.registers is not None:
         out["registers"] = [register_to_dict(register) for register in frame.registers]
+    elif frame.function in MASKS and (mask := mask_register(frame)) is not None:
+        out["registers"] = [mask]  # (FC22's register, its masks as -T registers shows them)
     if fields:
         return _tail(frame, out)
     _tail(frame, out, lists=False)
@@ -368,6 +371,8 @@ def item_to_json(item: Item, extra: dict[str, Any] | None = None) -> str:
             parts.append('"registers": ' + _plain_registers_json(registers))
         else:
             parts.append('"registers": [' + ", ".join([_register_json(register) for register in registers]) + "]")
+    elif frame.function in MASKS and (mask := mask_register(frame)) is not None:
+        parts.append('"registers": ' + json.dumps([mask]))  # (as item_to_dict)
     if bits is not None:
         parts.append('"bits": ' + _bits_json(bits))
     if frame.objects is not None or frame.kind is Kind.EXCEPTION:

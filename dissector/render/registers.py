@@ -11,7 +11,7 @@ so `-T registers` cannot disagree with `--json` (and `--parquet`'s registers tab
   answer, at the register's address: `text` shows its masks as the summary does (`AND 0x00F2 OR 0x0025`);
   the register then holds (its value before AND and_mask) OR (or_mask AND NOT and_mask) (Application
   Protocol 6.16), so `value` is or_mask where and_mask is 0 and empty elsewhere (the value before is
-  not in the frame; the text says so rather than guess);
+  not in the frame; the text says so rather than guess): --json's register of the frame (mask_register);
 - `exception`: a register an exception tells the status of (ATV71 exception 02 to a read whose every
   parameter is non-existent or protected, p.38), `value` empty.
 `write` says what became of a written value (the codes of data/modbus.toml [confirm] write, and it says
@@ -31,7 +31,7 @@ from collections.abc import Iterator
 from typing import Any
 
 from dissector.model import Frame, Item, Kind
-from dissector.protocol.rules import CONFIRM, Confirm, confirmed_by
+from dissector.protocol.rules import CONFIRM, Confirm, confirmed_by, text
 from dissector.protocol.printable import printable
 
 COLUMNS = (
@@ -43,7 +43,6 @@ REGISTER_KEYS = ("address", "label", "code", "name", "value", "scaled", "unit", 
 ECHOES = confirmed_by(Confirm.ECHO)  # whose answer repeats the values written (FC5, FC6): `echo` rows
 MASKS = confirmed_by(Confirm.MASK)  # whose answer repeats the masks written (FC22): `echo` rows too
 MASK_FIELDS = ("address", "and_mask", "or_mask")
-PRIOR_UNKNOWN = "the result depends on the value before"  # (a mask row's text where and_mask keeps bits)
 
 
 def access_of(record: dict[str, Any]) -> str:
@@ -96,19 +95,22 @@ def _masks(fields: Any) -> tuple[int, int, int] | None:
     return None if fields is None else tuple(fields[name] for name in MASK_FIELDS)  # type: ignore[return-value]
 
 
-def _mask_element(record: dict[str, Any], item: Item | None) -> dict[str, Any] | None:
-    """The register element of an FC22 request or echo (the module's doc), None: malformed or not one."""
-    if record.get("function") not in MASKS or record["kind"] == "exception":
+def mask_register(frame: Frame) -> dict[str, Any] | None:
+    """The register element an FC22 request or echo carries in --json's `registers` (render/jsonout.py) and
+    so in -T registers, -T fields, -Y and --parquet (the module's doc): its address, its value where it does
+    not depend on the value before, its masks as text; None: not one, or malformed."""
+    if frame.function not in MASKS or frame.kind is Kind.EXCEPTION:
         return None
-    fields = record.get("fields")
-    masks = _masks(fields if fields is not None else item.fields if isinstance(item, Frame) else None)
+    masks = _masks(frame.fields)
     if masks is None:
         return None
     address, and_mask, or_mask = masks
-    text = f"AND 0x{and_mask:04X} OR 0x{or_mask:04X}"  # (the summary's, describe.TEXT_FORMS "mask")
     known = and_mask == 0  # (every bit from or_mask: the value before does not matter)
-    return {"address": address, "label": record.get("span_label"), "value": or_mask if known else None,
-            "text": text if known else f"{text}: {PRIOR_UNKNOWN}", "words": 1}
+    out: dict[str, Any] = {"address": address, "value": or_mask if known else None,
+                           "text": text("mask_written" if known else "mask_prior", and_mask=and_mask, or_mask=or_mask)}
+    if frame.span_label is not None:
+        out["label"] = frame.span_label
+    return out
 
 
 def register_rows(record: dict[str, Any], item: Item | None = None) -> Iterator[dict[str, Any]]:
@@ -116,10 +118,7 @@ def register_rows(record: dict[str, Any], item: Item | None = None) -> Iterator[
     (the record's epoch seconds are the caller's to show); `item`: the record's frame (write_outcome)."""
     elements = (record.get("registers") or []) + (record.get("bits") or [])
     if not elements:
-        mask = _mask_element(record, item)
-        if mask is None:
-            return
-        elements = [mask]  # (its `words`: 1, a 16-bit register, for --parquet)
+        return
     write, code, echoed = write_outcome(record, item)
     head = {
         "frame": record["frame"], "slave": record["slave"], "function": record["function"],
@@ -129,8 +128,6 @@ def register_rows(record: dict[str, Any], item: Item | None = None) -> Iterator[
         row = dict(head)
         for key in REGISTER_KEYS:
             row[key] = element.get(key)
-        if "words" in element and not record.get("registers"):
-            row["words"] = element["words"]
         if echoed is not None and echoed.get(row["address"], None) != row["value"]:
             row["write"] = "differs"
         yield row

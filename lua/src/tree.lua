@@ -228,12 +228,26 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
   return at
 end
 
--- The PDU's fields of a frame that parsed (not an exception's: its code is shown as such), under `t`.
+-- The register of a write confirmed by its masks (data/modbus.toml [confirm] "mask": FC22), as vw3-decode
+-- --json lists it (render/registers.py mask_register): at its address, its value where the value before
+-- does not matter (and_mask 0: or_mask), its masks as text; on the or mask's bytes.
+local MASK_WRITES = DATA.rules.by_confirm.mask
+local function mask_register(f, b, places)
+  local and_mask, or_mask = u16(b, places.and_mask.at), u16(b, places.or_mask.at)
+  local masks = { and_mask = and_mask, or_mask = or_mask }
+  return { address = u16(b, places.address.at), label = f.span_label, offset = places.or_mask.at,
+    value = and_mask == 0 and or_mask or nil, text = say(and_mask == 0 and "mask_written" or "mask_prior", masks) }
+end
+
+-- The PDU's fields of a frame that parsed (not an exception's: its code is shown as such), under `t`; an
+-- FC22's register after them.
 local function add_pdu(t, tvb, f, stop)
   local entry = LAYOUT_OF[f.kind] and LAYOUT_OF[f.kind][f.fn]
   local layout = LAYOUTS[entry and entry.layout or "raw"]
   if f.malformed or #layout == 0 then return end
-  add_shape(t, tvb, f, frame_bytes(f, tvb), layout, 2, stop)
+  local b = frame_bytes(f, tvb)
+  add_shape(t, tvb, f, b, layout, 2, stop)
+  if MASK_WRITES[f.fn] then add_register(t, tvb, f, mask_register(f, b, DATA.field_places[entry.layout]), nil, true) end
 end
 
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than

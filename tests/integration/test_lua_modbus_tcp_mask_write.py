@@ -54,9 +54,15 @@ def responses(tmp_path: Path, pairs: list[tuple[str, str]], two_pass: bool, *opt
     return lines[1::2]
 
 
+# (but the echoes' own register, frames 4, 6 and 12: the serial plugin lists an FC22 frame's register as
+# vw3-decode --json does; vw3_modbus.lua names Wireshark's registers, and its Modbus tree shows the masks)
+TCP_LINES = [line if line.split("|")[0] not in ("4", "6", "12") else line.split("|")[0] + "||"
+             for line in PLUGIN_LINES]
+
+
 @pytest.mark.parametrize("two_pass", [False, True])
 def test_a_confirmed_mask_write_changes_the_memory(tmp_path: Path, two_pass: bool) -> None:
-    assert responses(tmp_path, PAIRS, two_pass, "-o", "vw3.profiles:atv71") == PLUGIN_LINES
+    assert responses(tmp_path, PAIRS, two_pass, "-o", "vw3.profiles:atv71") == TCP_LINES
 
 
 @pytest.mark.parametrize("two_pass", [False, True])

@@ -40,14 +40,14 @@ EXPECTED = {
         "written 23 in frame #4, 16#8000 now]  CRC ok",
     14: "    14" + PREFIX + "8401..8402 (2): CHCF=SIM (combined) COP=23 (not a listed value) [#13]  CRC ok",
 }
-# The plugin's fields of the responses: frame, register texts, notes.
+# The plugin's fields of the responses: frame, register texts (an echo's: its masks, as --json's), notes.
 PLUGIN_LINES = [
     "2|IO (I/O profile),18 (not a listed value)|",
-    "4||",
-    "6||",
+    "4|AND 0x00F2 OR 0x0025: the result depends on the value before|",
+    "6|AND 0x0000 OR 0x0001|",
     "8|Enable voltage, No quick stop|",
     "10|SIM (combined),16#8000: protected|COP (8402) became protected: written 23 in frame #4, 16#8000 now",
-    "12||",
+    "12|AND 0x00F2 OR 0x0025: the result depends on the value before|",
     "14|SIM (combined),23 (not a listed value)|",
 ]
 
