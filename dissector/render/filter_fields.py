@@ -38,6 +38,22 @@ REGISTER_FIELDS: dict[str, str] = _group("register")
 ONLY_TRUE = frozenset(entry["key"] for entry in CATALOGUE if entry.get("only_true"))
 # Other names of fields, as -Y help lists them (`alias: exception`): -Y and -e take them alike.
 ALIASES: dict[str, str] = {"exception": "exception_code"}
+# Names a Wireshark user types, the plugin's (data/fields.toml `filter`) and tshark's own mbrtu and modbus
+# fields', -> vw3-decode's key, which -Y's error names (`vw3.slave`: "vw3-decode names it slave"). Only
+# named, not taken: where the semantics differ (mbrtu.crc16 reads the CRC's bytes high byte first, 0x3477
+# where crc is 0x7734; modbus.reference_num is on requests only, start on their answers too) a silent alias
+# would filter other frames than the user's Wireshark does.
+FOREIGN_NAMES: dict[str, str] = {
+    entry["filter"]: entry["key"] for entry in CATALOGUE if "key" in entry and "filter" in entry
+} | {
+    "frame.number": "frame", "frame.time_epoch": "time", "frame.time": "time", "frame.len": "length",
+    "frame.cap_len": "length", "frame.comment": "comment", "mbrtu.unit_id": "slave", "mbrtu.crc16": "crc",
+    "modbus.func_code": "function", "modbus.exception_code": "exception_code", "modbus.request_frame": "request_frame",
+    "modbus.response_time": "response_time", "modbus.reference_num": "start", "modbus.word_cnt": "quantity",
+    "modbus.bit_cnt": "quantity", "modbus.regnum16": "address", "modbus.regval_uint16": "value",
+    "modbus.diagnostic_code": "subfunction", "modbus.byte_cnt": "fields.byte_count", "modbus.and_mask": "fields.and_mask",
+    "modbus.or_mask": "fields.or_mask", "modbus.data": "fields.data", "modbus.mei": "fields.mei_type",
+}
 # field -> its meaning as -Y help and -G fields list it (with what only vw3-decode's filters take, as
 # `alias: exception`)
 FIELD_HELP: dict[str, str] = {
@@ -127,6 +143,19 @@ def unknown_pdu_key(key: str) -> str | None:
     close = difflib.get_close_matches(key, list(keys), n=3)
     hint = f" (did you mean {', '.join('fields.' + name for name in close)}?)" if close else ""
     return f"no PDU layout has the key {key!r}{hint}; -G fields lists them"
+
+
+def foreign_name(name: str) -> str | None:
+    """vw3-decode's key for a Wireshark field name (FOREIGN_NAMES; the plugin's vw3.X of a PDU key X, such as
+    vw3.byte_count, is fields.X; frame.X is X where vw3-decode has one), None for a name it has no key for."""
+    if name in FOREIGN_NAMES:
+        return FOREIGN_NAMES[name]
+    last = name.rsplit(".", 1)[-1]
+    if name.startswith("vw3.") and name.count(".") == 1 and last in pdu_keys():
+        return "fields." + last
+    if name.startswith("frame.") and last in FRAME_FIELDS | TIME_FILTER_FIELDS:
+        return last
+    return None
 
 
 def owners_text(owners: tuple[str, ...]) -> str:

@@ -74,6 +74,7 @@ from collections.abc import Callable
 from typing import Any
 
 from dissector.render.filter_error import FilterError  # noqa: F401 (re-exported)
+from dissector.render.filter_fields import foreign_name
 from dissector.render.filter_fields import (  # noqa: F401 (re-exported: fields.py and -Y help use them)
     ALIASES, _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, ONLY_TRUE, RECORD_KEYS, REGISTER_FIELDS, TIME_FILTER_FIELDS,
     field_listing,
@@ -244,10 +245,9 @@ class _Parser:
                 raise self.error(f"unknown field {name_token.text!r}: {problem}", name_token)
             return field, "any", False
         if "." in field:
-            # tshark's frame.time, frame.number...: said by the name vw3-decode gives them
-            ours = "frame" if field == "frame.number" else field.removeprefix("frame.")
-            known = ours in FRAME_FIELDS or ours in TIME_FILTER_FIELDS
-            hint = f" (vw3-decode names it {ours})" if known else ""
+            # tshark's frame.number, the plugin's vw3.slave, mbrtu.unit_id...: said by the name vw3-decode gives them
+            ours = foreign_name(field)
+            hint = f" (vw3-decode names it {ours})" if ours is not None else ""
             raise self.error(f"unknown field {name_token.text!r}: only fields.KEY names a key inside a value"
                              f"{hint}", name_token)
         if field in FRAME_FIELDS:
