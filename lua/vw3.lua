@@ -8364,8 +8364,8 @@ local function register_view(st, f, run, b, index)
   end
   return view
 end
-M.annotate_with, M.configure, M.inferred_registers = annotate_with, configure, inferred_registers
-M.new_state, M.register_view = new_state, register_view
+M.MASK_WRITES, M.annotate_with, M.configure = MASK_WRITES, annotate_with, configure
+M.inferred_registers, M.new_state, M.register_view = inferred_registers, new_state, register_view
 end
 
 -- ---- vw3.pack: lua/src/pack.lua ----
@@ -9692,9 +9692,9 @@ local function summary(f, tvb, st, device)
   end
   return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail
 end
-M.START_WORDS, M.add_pdu, M.add_register, M.add_said = START_WORDS, add_pdu, add_register, add_said
-M.add_text, M.count_text, M.fields_at, M.frame_bytes = add_text, count_text, fields_at, frame_bytes
-M.frame_range, M.summary, M.unseen = frame_range, summary, unseen
+M.MASK_WRITES, M.START_WORDS, M.add_pdu, M.add_register = MASK_WRITES, START_WORDS, add_pdu, add_register
+M.add_said, M.add_text, M.count_text, M.fields_at = add_said, add_text, count_text, fields_at
+M.frame_bytes, M.frame_range, M.summary, M.unseen = frame_bytes, frame_range, summary, unseen
 end
 
 -- ---- vw3.show: lua/src/show.lua ----
@@ -9705,8 +9705,8 @@ package.preload["vw3.show"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, ByteArray, DATA, DIAGNOSTICS, EXCEPTION = AUTO, ByteArray, DATA, DIAGNOSTICS, EXCEPTION
-local KIND_NUMBER, NOISE, NO_INTERPRETATION, NSTime = KIND_NUMBER, NOISE, NO_INTERPRETATION, NSTime
-local PLC_LABELS, REQUEST, START_WORDS, add_pdu = PLC_LABELS, REQUEST, START_WORDS, add_pdu
+local KIND_NUMBER, MASK_WRITES, NOISE, NO_INTERPRETATION = KIND_NUMBER, MASK_WRITES, NOISE, NO_INTERPRETATION
+local NSTime, PLC_LABELS, REQUEST, START_WORDS, add_pdu = NSTime, PLC_LABELS, REQUEST, START_WORDS, add_pdu
 local add_register, add_said, add_text, bit_at, concat = add_register, add_said, add_text, bit_at, concat
 local count_text, device_of, ended, ex, exception_name = count_text, device_of, ended, ex, exception_name
 local fields_at, finish_safely, floor, format, frame_bytes = fields_at, finish_safely, floor, format, frame_bytes
@@ -9855,6 +9855,7 @@ local function add_named(t, tvb, f, full, base)
   if start == nil or quantity == nil or f.kind == EXCEPTION then return end
   local count, first = run and run.count or 0, run and run.start
   if count > 0 and count == quantity and first == start then return end -- (its values cover the window)
+  if MASK_WRITES[f.fn] and not f.malformed then return end -- (FC22: its register is shown, tree.lua add_pdu)
   local field, at = BIT_WINDOW[f.fn] and pf.bit_address or pf.reg_address, tvb:range(f.at, 0)
   local labels = base ~= nil and not BIT_WINDOW[f.fn] and PLC_LABELS[base] or nil
   local named = true

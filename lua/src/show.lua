@@ -145,6 +145,7 @@ local function add_named(t, tvb, f, full, base)
   if start == nil or quantity == nil or f.kind == EXCEPTION then return end
   local count, first = run and run.count or 0, run and run.start
   if count > 0 and count == quantity and first == start then return end -- (its values cover the window)
+  if MASK_WRITES[f.fn] and not f.malformed then return end -- (FC22: its register is shown, tree.lua add_pdu)
   local field, at = BIT_WINDOW[f.fn] and pf.bit_address or pf.reg_address, tvb:range(f.at, 0)
   local labels = base ~= nil and not BIT_WINDOW[f.fn] and PLC_LABELS[base] or nil
   local named = true
