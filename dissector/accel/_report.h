@@ -15,6 +15,7 @@
 typedef struct {
     uint32_t key;             /* param_key (_stats.h): by slave, address, table */
     int readable;             /* series.status was None when read (gen: while no span opened since) */
+    uint8_t origins;          /* the protocol tables of the codes whose values it drew (told to series.origins) */
     unsigned gen;
     unsigned long long values; /* points not yet added to series.values */
     uint64_t last;            /* the point key of its last value (most polls read what they read before), */
@@ -248,10 +249,57 @@ static int trends_full(Report *r) {
     return 0;
 }
 
+/* A trend's references released (a series not kept yet is borrowed: none). */
+static void trend_release(Trend *t) {
+    if (t->columns == NULL) return;
+    Py_CLEAR(t->series);
+    Py_CLEAR(t->columns);
+}
+
+/* series.values += more: 0, or -1 with an exception set. */
+static int series_values_add(PyObject *series, unsigned long long more) {
+    PyObject *had = more ? PyObject_GetAttrString(series, "values") : NULL, *n = had ? PyLong_FromUnsignedLongLong(more) : NULL;
+    int status = !more ? 0 : set_attr(series, "values", n ? PyNumber_Add(had, n) : NULL);
+    Py_XDECREF(had);
+    Py_XDECREF(n);
+    return status;
+}
+
+/* A new device for this slave (its namer another: profile `auto`): its trends forgotten, their values counted
+ * into their series, which the collector may have moved to other tables (ReportCollector.rehomed): the next
+ * value finds its series again; its values are read again (the points cached with the old namer not asked).
+ * 0, or -1 with an exception set (no memory: the trends are dropped, the run ends on it). */
+static int report_device(Report *r, Slave *s, int slave) {
+    Dense kept = {0};
+    int status = 0;
+    for (Trend *t = (Trend *)r->trends.items; t < (Trend *)r->trends.items + r->trends.count; t++) {
+        Trend *into = NULL;
+        if ((int)PARAM_SLAVE(t->key) != slave && status == 0 &&
+            (into = dense_add(&kept, &TREND_KIND, &t->key, 0)) != NULL) {
+            *into = *t; /* (its references are into's now) */
+            continue;
+        }
+        if ((int)PARAM_SLAVE(t->key) != slave) status = -1;
+        else if (t->columns != NULL && status == 0) status = series_values_add(t->series, t->values);
+        trend_release(t);
+    }
+    dense_free(&r->trends);
+    r->trends = kept;
+    r->full = 0;
+    Py_XSETREF(r->namers[slave], Py_XNewRef(s->namer));
+    r->named[slave] = ++r->namings;
+    if (++r->epochs[slave] >= 1u << 16) {
+        dense_clear(&r->points);
+        memset(r->epochs, 0, sizeof r->epochs);
+    }
+    return status;
+}
+
 /* ReportCollector.state of a value read or confirmed written (READ, CONFIRM) at x, in column col; `table`:
- * the function's register table (Stats.tables). */
-static int report_value(Report *r, Slave *s, int slave, int function, int table, unsigned address, unsigned value,
-                        const Time *x, long long col) {
+ * the function's register table on the slave's device (Stats.tables), `origin`: in the protocol. */
+static int report_value(Report *r, Slave *s, int slave, int function, int table, int origin, unsigned address,
+                        unsigned value, const Time *x, long long col) {
+    if (s->namer != r->namers[slave] && report_device(r, s, slave) < 0) return -1;
     uint32_t tag = param_key(slave, table, address);
     Trend *t = dense_find(&r->trends, &TREND_KIND, &tag);
     if (t == NULL && !r->full && PyDict_Size(r->series) >= MAX_SERIES) {
@@ -268,14 +316,6 @@ static int report_value(Report *r, Slave *s, int slave, int function, int table,
         Py_XDECREF(key);
         if (series == NULL && PyErr_Occurred()) return -1;
         t->series = series; /* NULL: made by engine_point below (there is room: not full) */
-    }
-    if (s->namer != r->namers[slave]) { /* a new device for this slave: its values are read again */
-        Py_XSETREF(r->namers[slave], Py_XNewRef(s->namer));
-        r->named[slave] = ++r->namings;
-        if (++r->epochs[slave] >= 1u << 16) {
-            dense_clear(&r->points);
-            memset(r->epochs, 0, sizeof r->epochs);
-        }
     }
     int mapped = bit(s->mapped, address);
     uint64_t pkey = 1ULL << 63 | (uint64_t)r->epochs[slave] << 46 | (uint64_t)handled_index(function) << 40 |
@@ -311,6 +351,14 @@ static int report_value(Report *r, Slave *s, int slave, int function, int table,
         }
     }
     if (t->columns == NULL && trend_keep(r, t, t->series) < 0) return -1;
+    if (!(t->origins >> origin & 1)) { /* a code of another table draws it: Series.origins says so (rehome) */
+        PyObject *had = PyObject_GetAttrString(t->series, "origins");
+        long bits = had != NULL ? PyLong_AsLong(had) : -1;
+        Py_XDECREF(had);
+        if ((bits == -1 && PyErr_Occurred()) || set_attr(t->series, "origins", PyLong_FromLong(bits | 1L << origin)) < 0)
+            return -1;
+        t->origins = (uint8_t)(bits | 1L << origin);
+    }
     if (t->gen != r->gen) {
         PyObject *status = PyObject_GetAttrString(t->series, "status");
         if (status == NULL) return -1;
@@ -331,9 +379,10 @@ static int report_value(Report *r, Slave *s, int slave, int function, int table,
 }
 
 /* What the report takes of a transaction the engine counts (see count_transaction): number, number + 1;
- * `table`: its registers' table (Stats.tables). */
+ * `table`: its registers' table on the slave's device (Stats.tables), `origin`: in the protocol. */
 static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, const FrameRef *qf, const FrameRef *af,
-                              const Words *confirmed, const Words *reads, unsigned long long number, int table) {
+                              const Words *confirmed, const Words *reads, unsigned long long number, int table,
+                              int origin) {
     Report *r = (Report *)report;
     const uint8_t *q = b + qf->at, *a = af != NULL ? b + af->at : NULL;
     int slave = q[0], function = q[1];
@@ -350,7 +399,7 @@ static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, cons
     for (int pass = 0; pass < 2; pass++) { /* the writes confirmed first (FC23 writes before it reads) */
         const Words *w = pass ? reads : confirmed;
         for (unsigned k = 0; w != NULL && k < w->count; k++)
-            if (report_value(r, s, slave, function, table, words_address(w, k), words_value(w, k), &x, col) < 0)
+            if (report_value(r, s, slave, function, table, origin, words_address(w, k), words_value(w, k), &x, col) < 0)
                 return -1;
     }
     return 0;
@@ -372,11 +421,7 @@ static int report_init(Report *r, PyObject *args, PyObject *kwargs) {
 }
 
 static void report_dealloc(Report *r) {
-    for (Trend *t = (Trend *)r->trends.items; t < (Trend *)r->trends.items + r->trends.count; t++) {
-        if (t->columns == NULL) continue; /* (a series not kept yet is borrowed) */
-        Py_DECREF(t->series);
-        Py_DECREF(t->columns);
-    }
+    for (Trend *t = (Trend *)r->trends.items; t < (Trend *)r->trends.items + r->trends.count; t++) trend_release(t);
     for (int k = 0; k < 256; k++) {
         Py_XDECREF(r->h_columns[k]);
         Py_XDECREF(r->namers[k]);

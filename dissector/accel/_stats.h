@@ -92,7 +92,8 @@ typedef struct {
 #define PARAMS(st) ((Param *)(st)->params.items)
 
 static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, const FrameRef *qf, const FrameRef *af,
-                              const Words *confirmed, const Words *reads, unsigned long long number, int table);
+                              const Words *confirmed, const Words *reads, unsigned long long number, int table,
+                              int origin);
 
 static PyTypeObject StatsType;
 
@@ -314,7 +315,7 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
         answer != NULL && !(answer[1] & 0x80) && confirmed_writes(answer, writes, &written) ? &written : NULL;
     int table = slave_table(st, s, slave, function), origin = st->tables[function];
     if (table < 0 || (st->report != NULL && report_transaction(st->report, s, b, qf, af, confirmed, reads, number,
-                                                                  table) < 0))
+                                                                  table, origin) < 0))
         return -1;
     Time qt = stamp_time(qf->timed, qf->ns);
     stats_seen(&st->bus, &qt);

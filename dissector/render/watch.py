@@ -42,7 +42,7 @@ from dissector.errors import UsageError
 from dissector.model import Frame, Item, Kind, Register
 from dissector.protocol.printable import printable
 from dissector.render.history import READ, UNREADABLE, UNREADABLE_STATUSES, WRITE_OBSERVED, History, wide_text
-from dissector.render.stats_store import table_label
+from dissector.render.stats_store import TABLES, homes_of, origins_of, table_label
 from dissector.render.timefmt import Clock
 
 @dataclass(frozen=True, slots=True)
@@ -206,6 +206,13 @@ class Watcher:
         # By (slave, table, address), as the history keeps parameters; in the order last set (rehomed).
         self._state: dict[tuple[int, int, int], _State] = {}  # as the history holds it (re-read)
         self._shown: dict[tuple[int, int, int], _State] = {}  # as provisional lines showed it
+        # By the same keys: bit t, a state set by a code of protocol table t (FC4: input; rehomed moves it by
+        # those, as the store moves its parameters); and, where two tables' codes set them, by (slave, origin,
+        # address), each one's last state (_State), which a choice taken back parts them into.
+        self._origins: dict[tuple[int, int, int], int] = {}
+        self._parts: dict[tuple[int, int, int], _State] = {}
+        self._shown_origins: dict[tuple[int, int, int], int] = {}  # (of _shown)
+        self._shown_parts: dict[tuple[int, int, int], _State] = {}
         self._column: tuple[Frame | None, str] = (None, "-")
         # The file being read when several are one bus (render/buses.py Buses.switch): lines name it.
         self.source: str | None = None
@@ -247,6 +254,7 @@ class Watcher:
         new = self._read(frame, register, event)
         old = self._state.pop(key, None)  # type: ignore[arg-type]
         self._state[key] = new  # type: ignore[index]
+        self._part(self._origins, self._parts, key, TABLES[frame.function], old, new)  # type: ignore[arg-type]
         if frame.provisional:
             return  # re-read once the device was chosen: its change (if any) was shown provisional
         self._shown.pop(key, None)  # type: ignore[arg-type]
@@ -264,8 +272,21 @@ class Watcher:
         new = self._read(frame, register, event, provisional=True)
         old = self._shown.pop(key, None)  # type: ignore[arg-type]
         self._shown[key] = new  # type: ignore[index]
+        self._part(self._shown_origins, self._shown_parts, key, TABLES[frame.function], old, new)  # type: ignore
         if old is not None and old.differs(new):
             self._emit(self._pending(frame, key, old, new), provisional=True)  # type: ignore[arg-type]
+
+    @staticmethod
+    def _part(origins: dict[tuple[int, int, int], int], parts: dict[tuple[int, int, int], _State],
+              key: tuple[int, int, int], origin: int, old: _State | None, new: _State) -> None:
+        """`new` set at `key` by a code of protocol table `origin` (`origins`): where codes of two tables set
+        its states, each one's last kept in `parts` too (by slave, origin, address: rehomed parts them)."""
+        bits = origins.get(key, 0)
+        if bits | 1 << origin != 1 << origin:
+            if bits & (bits - 1) == 0 and old is not None:  # its second table: the last is the first's
+                parts[(key[0], bits.bit_length() - 1, key[2])] = old
+            parts[(key[0], origin, key[2])] = new
+        origins[key] = bits | 1 << origin
 
     def _pending(self, frame: Frame, key: tuple[int, int, int], old: _State | None, new: _State) -> _Pending:
         if self._column[0] is not frame:  # one text a frame: -t d takes the previous time once
@@ -277,16 +298,38 @@ class Watcher:
         pass  # states keep their raw values: they are named again when written
 
     def rehomed(self, slave: int, homes: bytes) -> None:
-        """The slave's states moved to the tables its new device reads them with (History._rehome): of two
-        states of one parameter, the later set is its state, as the history keeps it."""
-        for states in (self._state, self._shown):
+        """The slave's states moved to the tables its new device reads them with (History._rehome), by the
+        protocol tables of the codes that set them (`_origins`, as the store moves its parameters): of two
+        states of one parameter, the later set is its state (each one's last kept: `_part`); one that two
+        tables' codes set, where those are apart now (a choice taken back), parts into each one's last."""
+        for states, origins, parts in ((self._state, self._origins, self._parts),
+                                       (self._shown, self._shown_origins, self._shown_parts)):
+            moving = {key: origins.pop(key) for key in [key for key in origins if key[0] == slave]}
+            homed: dict[tuple[int, int, int], int] = {}  # the keys' origins after the move
+            for key, bits in moving.items():
+                tables = homes_of(bits, homes)
+                for origin in origins_of(bits):
+                    home = (slave, homes[origin] if len(tables) > 1 else min(tables), key[2])
+                    homed[home] = homed.get(home, 0) | 1 << origin
+            for key, bits in moving.items():  # states of one table's codes joining another's: their parts
+                home = (slave, homes[bits.bit_length() - 1], key[2])
+                if bits & (bits - 1) == 0 and key in states and homed[home] & (homed[home] - 1):
+                    parts.setdefault((slave, bits.bit_length() - 1, key[2]), states[key])
             order = {key: index for index, key in enumerate(states)}
-            for key in [key for key in order if key[0] == slave and homes[key[1]] != key[1]]:
-                home = (slave, homes[key[1]], key[2])
+            for key in [key for key in order if key[0] == slave]:
                 moved = states.pop(key)
-                if home not in order or order[home] < order[key]:
-                    states.pop(home, None)
-                    states[home] = moved
+                tables = homes_of(moving.get(key, 1 << key[1]), homes)
+                if len(tables) == 1:
+                    home = (slave, tables.pop(), key[2])
+                    if home not in order or order[home] < order[key]:
+                        states.pop(home, None)
+                        states[home] = moved
+                    continue
+                for origin in origins_of(moving[key]):
+                    part = parts.pop((slave, origin, key[2]), None)
+                    if part is not None:
+                        states[(slave, homes[origin], key[2])] = part
+            origins.update(homed)
 
     # -- writing -----------------------------------------------------------------------------------
     def flush(self) -> None:

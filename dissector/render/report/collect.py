@@ -38,7 +38,7 @@ from dissector.render.report.groups import EventGroups
 from dissector.render.report.meaning import device_meaning, event_text
 from dissector.render.report.moments import Moments
 from dissector.render.report.reading import MAX_LABELS, adopt, labelled, rehome, scales, shown_unit, summary_text
-from dissector.render.stats_store import TABLE_NAMES, table_label
+from dissector.render.stats_store import TABLE_NAMES, TABLES, table_label
 from dissector.render.summary import noise_text
 
 COLUMNS = 600
@@ -68,6 +68,7 @@ class Series:
     # (reading.py adopt); None: no row, the points are the words themselves.
     row: Any = None
     reserved: bool = False  # made by provisional(), no state yet: its label is its first state's
+    origins: int = 0  # bit t: a state of a code of protocol table t (FC4: input), by which rehome moves it
     values: int = 0
     status: str | None = None  # the open unreadable span's status, None when readable
     marks: list[tuple[float, str]] = field(default_factory=list)
@@ -251,6 +252,8 @@ class ReportCollector:
         key = (frame.slave, register.address, table)
         if key not in self.series and len(self.series) < MAX_SERIES:
             self.series[key] = Series(frame.slave, register.address, reserved=True)  # type: ignore[arg-type]
+        if key in self.series:
+            self.series[key].origins |= 1 << TABLES[frame.function]  # type: ignore[index]
 
     def state(self, frame: Frame, register: Register, event: int, changed: bool) -> None:
         """A register that set its parameter's state: a point, or an unreadable span's start or end."""
@@ -266,6 +269,7 @@ class ReportCollector:
         series = self.series.get((slave, register.address, table)) or self._series(slave, table, register)  # type: ignore
         if series is None:
             return
+        series.origins |= 1 << TABLES[frame.function]
         if series.reserved:
             series.reserved, series.label = False, table_label(register.label, table, series.address)
         if rows is None:  # no device: the names the decode gave
@@ -345,6 +349,7 @@ class ReportCollector:
         register = Register(address, value) if plain is None else plain(slave, function, address, value)
         table = self.history.tables(slave)[function]
         series = self.series.get((slave, address, table)) or self._series(slave, table, register)
+        series.origins |= 1 << TABLES[function]  # (the engine tells a further origin itself: _report.h)
         if series.reserved:
             series.reserved, series.label = False, table_label(register.label, table, address)
         if self._device is None:

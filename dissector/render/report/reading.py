@@ -13,7 +13,7 @@ from typing import Any
 from dissector.devices.maps import interpret
 from dissector.model import Register
 from dissector.protocol.rules import text as say_text
-from dissector.render.stats_store import table_label, table_reader
+from dissector.render.stats_store import homes_of, table_label, table_reader
 from dissector.render.watch import value_text
 
 MAX_LABELS = 64  # an enumeration's or bit field's texts kept for the chart's axis
@@ -131,10 +131,15 @@ def word_of(row: Any, y: float) -> int:
 
 
 def rehome(series: dict[tuple[int, int, int], Any], slave: int, homes: bytes, label: Any) -> None:
-    """The slave's series (by slave, address, table) moved to homes[table] (History._rehome), joined to the
-    series kept there; `label`: the annotator's PLC-style labels (--address-style plc), or None."""
-    for key in [key for key in series if key[0] == slave and homes[key[2]] != key[2]]:
-        moved, home = series.pop(key), (slave, key[1], homes[key[2]])
+    """The slave's series (by slave, address, table) moved to the table homes gives the protocol tables of the
+    codes that drew them (Series.origins; History._rehome: as the store moves its parameters), joined to the
+    series kept there; `label`: the annotator's PLC-style labels (--address-style plc), or None. A series two
+    tables' codes drew, where those are apart now (a choice taken back), stays: its points cannot be parted."""
+    for key in [key for key in series if key[0] == slave]:
+        tables = homes_of(series[key].origins or 1 << key[2], homes)
+        if len(tables) != 1 or min(tables) == key[2]:
+            continue
+        moved, home = series.pop(key), (slave, key[1], min(tables))
         moved.label = table_label(label and label(slave, table_reader(home[2]), key[1]), home[2], key[1])
         if home in series:
             join(series[home], moved)
@@ -153,6 +158,7 @@ def join(kept: Any, moved: Any) -> None:
     kept.columns.load(array("d", [value for group in groups for value in group]))
     kept.columns.close()  # (its last group may be another column's now)
     kept.values += moved.values
+    kept.origins |= moved.origins
     kept.marks = sorted(kept.marks + moved.marks, key=lambda mark: mark[0])
     kept.marks_dropped += moved.marks_dropped
     for value, text in moved.labels.items():
