@@ -19,8 +19,10 @@ RING_NAME = re.compile(r"^(?P<prefix>.*)_(?P<number>\d{5,})_(?P<stamp>\d{14})(?P
 def group_files(paths: list[str]) -> list[tuple[str, tuple[str, ...]]]:
     """(shown, files) per capture, in the order first named: a ring buffer's files (same folder, prefix
     and suffix) by file number, shown as `folder/PREFIX.EXT` (its one file's name when only one is
-    given); any other path alone, as named."""
-    rings: dict[tuple[str, str, str], list[tuple[int, str]]] = {}
+    given); any other path alone, as named. Files of several dumpcap runs under one name (a capture
+    restarted in the same folder numbers its files from 00001 again) are one capture a run (_runs), each
+    shown as its first file's name: read by number alone, the runs' files were one stream, interleaved."""
+    rings: dict[tuple[str, str, str], list[tuple[int, str, str]]] = {}
     order: list[tuple[str, str] | tuple[str, str, str]] = []
     for path in paths:
         folder, base = os.path.split(path)
@@ -32,16 +34,48 @@ def group_files(paths: list[str]) -> list[tuple[str, tuple[str, ...]]]:
         if key not in rings:
             rings[key] = []
             order.append(key)
-        rings[key].append((int(match["number"]), path))
+        rings[key].append((int(match["number"]), match["stamp"], path))
     groups = []
     for key in order:
         if len(key) == 2:
             groups.append((key[0], (key[0],)))
             continue
         folder, prefix, suffix = key  # type: ignore[misc]
-        files = tuple(path for _number, path in sorted(rings[key]))  # type: ignore[index]
-        groups.append((files[0] if len(files) == 1 else os.path.join(folder, prefix + suffix), files))
+        runs = _runs(rings[key])  # type: ignore[index]
+        for files in runs:
+            whole = len(files) > 1 and len(runs) == 1
+            groups.append((os.path.join(folder, prefix + suffix) if whole else files[0], files))
     return groups
+
+
+def _runs(entries: list[tuple[int, str, str]]) -> list[tuple[str, ...]]:
+    """The files of each dumpcap run among (number, stamp, path) of one name: by number when no number
+    comes twice; else in time order (the stamp, then the number), a new run where the number does not go
+    up (dumpcap started again: 00001). The same file named twice is two runs, as any file named twice is
+    two captures."""
+    numbers = [number for number, _stamp, _path in entries]
+    if len(set(numbers)) == len(numbers):
+        return [tuple(path for _number, _stamp, path in sorted(entries))]
+    runs: list[list[str]] = []
+    previous = None
+    for number, _stamp, path in sorted(entries, key=lambda entry: (entry[1], entry[0], entry[2])):
+        if previous is None or number <= previous:
+            runs.append([])
+        runs[-1].append(path)
+        previous = number
+    return [tuple(run) for run in runs]
+
+
+def missing_files(before: str, after: str) -> list[str]:
+    """The warning for ring files missing between two of one run (numbers not one apart): the stream
+    jumps over them, so a request at the end of `before` may show unanswered, or paired with an answer
+    in `after`, where its own answer was in a missing file."""
+    first, last = (int(RING_NAME.match(os.path.basename(path))["number"]) for path in (before, after))  # type: ignore[index]
+    if last - first <= 1:
+        return []
+    numbers = f"file {first + 1:05d} is" if last - first == 2 else f"files {first + 1:05d}..{last - 1:05d} are"
+    return [f"{before}: the ring buffer's {numbers} missing before {os.path.basename(after)}: what it held is "
+            "not decoded, and a request at the end of this file may show no response or pair with a later answer"]
 
 
 class RingSource:
@@ -75,8 +109,9 @@ class RingSource:
         (accel/records.py reads a pcap's records in bulk), its offsets and times going on across them."""
         try:
             yield self.current
-            for path in self.files[1:]:
+            for before, path in zip(self.files, self.files[1:]):
                 self._warnings += self.current.take_warnings()  # (a file's own, said as the next begins)
+                self._warnings += missing_files(before, path)
                 self.current = self._open(path)
                 yield self.current
         finally:
