@@ -55,6 +55,20 @@ def positive_seconds(text: str) -> float:
     return value
 
 
+# --timeout's range: the texts say it in whole milliseconds (`the 1000 ms timeout`), as the plugin's timeout
+# preference takes it; an answer a day after its request answers nothing (1e300 made --stats' margin column
+# a 300-digit number, 1e-300 said "the 0 ms timeout").
+TIMEOUT_RANGE = (0.001, 86_400.0)
+
+
+def timeout_seconds(text: str) -> float:
+    value = positive_seconds(text)
+    low, high = TIMEOUT_RANGE
+    if not low <= value <= high:
+        raise argparse.ArgumentTypeError(f"{text!r} is outside 0.001..86400 seconds (1 ms to a day)")
+    return value
+
+
 def add_live_arguments(parser: argparse.ArgumentParser) -> None:
     group = parser.add_argument_group("live capture")
     group.add_argument(

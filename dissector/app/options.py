@@ -9,7 +9,7 @@ import argparse
 from dataclasses import dataclass
 
 from dissector import __version__
-from dissector.app.live_options import BYTESIZE_GIVEN, add_live_arguments, positive_seconds
+from dissector.app.live_options import BYTESIZE_GIVEN, add_live_arguments, timeout_seconds
 from dissector.app.profile_options import add_profile_arguments
 from dissector.app.rings import group_files
 from dissector.errors import UsageError
@@ -189,7 +189,7 @@ def build_parser() -> argparse.ArgumentParser:
     decoding.add_argument("--mode", choices=MODES, help="rtu or ascii framing instead of detecting it")
     decoding.add_argument(
         "--timeout",
-        type=positive_seconds,
+        type=timeout_seconds,
         default=1.0,
         metavar="SECONDS",
         help="a response later than this after its request does not answer it (needs timestamps; "
