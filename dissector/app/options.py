@@ -120,8 +120,9 @@ def build_parser() -> argparse.ArgumentParser:
         "-Y", dest="filter", action="append", default=[], metavar="EXPR",
         help="display filter, e.g. -Y 'slave == 12 and code == \"CHCF\"'; -Y help lists the fields",
     )
-    output.add_argument("-G", dest="glossary", choices=["fields"],
-                        help="-G fields: list the fields of -Y and -T fields, as tshark -G fields")
+    output.add_argument("-G", dest="glossary", choices=["fields"], nargs="?", const="fields",
+                        help="-G fields (or -G alone, as tshark's): list the fields of -Y and -T fields, as"
+                        " tshark -G fields")
     output.add_argument(
         "-w", dest="write", metavar="FILE",
         help="write the items shown to a pcap (linktype 147, USER0); - for standard output",

@@ -45,3 +45,10 @@ def test_tsharks_names_are_tsharks():
     known = {line.split("\t")[2] for line in glossary.splitlines() if line.startswith("F\t")}
     ours = [name for name in FOREIGN_NAMES if not name.startswith("vw3.")]
     assert ours and [name for name in ours if name not in known] == []
+
+
+def test_g_alone_is_g_fields():
+    """tshark -G with no report lists the fields; `vw3-decode -G` was refused (expected one argument)."""
+    fields = run_cli(["-G", "fields"])
+    assert fields[0] == 0 and fields[1].startswith("P\tVW3 Modbus serial")
+    assert run_cli(["-G"]) == fields
