@@ -9252,7 +9252,7 @@ package.preload["vw3.tree"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.tree"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS
+local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, MASK_WRITES = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, MASK_WRITES
 local NO_INTERPRETATION, PARAMETER_FIELDS, REQUEST, concat = NO_INTERPRETATION, PARAMETER_FIELDS, REQUEST, concat
 local describe, device_of, ex, exception_name, floor = describe, device_of, ex, exception_name, floor
 local format, function_name, hex_pairs, ipairs, made_once = format, function_name, hex_pairs, ipairs, made_once
@@ -9486,7 +9486,6 @@ end
 -- The register of a write confirmed by its masks (data/modbus.toml [confirm] "mask": FC22), as vw3-decode
 -- --json lists it (render/registers.py mask_register): at its address, its value where the value before
 -- does not matter (and_mask 0: or_mask), its masks as text; on the or mask's bytes.
-local MASK_WRITES = DATA.rules.by_confirm.mask
 local function mask_register(f, b, places)
   local and_mask, or_mask = u16(b, places.and_mask.at), u16(b, places.or_mask.at)
   local masks = { and_mask = and_mask, or_mask = or_mask }

@@ -231,7 +231,6 @@ end
 -- The register of a write confirmed by its masks (data/modbus.toml [confirm] "mask": FC22), as vw3-decode
 -- --json lists it (render/registers.py mask_register): at its address, its value where the value before
 -- does not matter (and_mask 0: or_mask), its masks as text; on the or mask's bytes.
-local MASK_WRITES = DATA.rules.by_confirm.mask
 local function mask_register(f, b, places)
   local and_mask, or_mask = u16(b, places.and_mask.at), u16(b, places.or_mask.at)
   local masks = { and_mask = and_mask, or_mask = or_mask }
