@@ -9691,9 +9691,9 @@ local function summary(f, tvb, st, device)
   end
   return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail
 end
-M.MASK_WRITES, M.START_WORDS, M.add_pdu, M.add_register = MASK_WRITES, START_WORDS, add_pdu, add_register
-M.add_said, M.add_text, M.count_text, M.fields_at = add_said, add_text, count_text, fields_at
-M.frame_bytes, M.frame_range, M.summary, M.unseen = frame_bytes, frame_range, summary, unseen
+M.START_WORDS, M.add_pdu, M.add_register, M.add_said = START_WORDS, add_pdu, add_register, add_said
+M.add_text, M.count_text, M.fields_at, M.frame_bytes = add_text, count_text, fields_at, frame_bytes
+M.frame_range, M.summary, M.unseen = frame_range, summary, unseen
 end
 
 -- ---- vw3.show: lua/src/show.lua ----

@@ -123,8 +123,19 @@ def _hex_named(key: str, value: Any) -> str:
     return f"{names.get(number, 'Unknown')} (0x{number:02x})"
 
 
+# The plugin's field titles and value strings (data/fields.toml) of the PDU keys it shows by a field of the
+# key's own (vw3.start `Start address`, vw3.subfunction `Sub-function`, named by the spec's table as Wireshark
+# writes a value string: `Return Query Data (0)`, `Unknown (99)`), so -V names them as its tree does.
+_CATALOGUE_KEYS = {entry["key"]: entry for entry in CATALOGUE if "key" in entry and entry.get("ftype") != "none"}
+_TITLES = {key: entry["title"] for key, entry in _CATALOGUE_KEYS.items() if "title" in entry}
+_NAMED = {key: getattr(SPEC, entry["values"]) for key, entry in _CATALOGUE_KEYS.items()
+          if entry.get("values") in ("diagnostics", "exceptions")}
+
+
 def field_label(key: str, function: int | None = None) -> str:
     label = FUNCTION_LABELS.get((function, key)) if function is not None else None
+    if label is None:
+        label = _TITLES.get(key)
     if label is None:
         words = [_ACRONYMS.get(word, word) for word in key.split("_")]
         words[0] = words[0][:1].upper() + words[0][1:]
@@ -284,14 +295,16 @@ def _field_lines(detail: _Detail, depth: int, name: str, value: Any) -> None:
         texts.append(f"{label} ({len(value)})")
         indent = _INDENT[depth + 1]
         if all(type(inner) is int for inner in value):  # words (file records, FIFO): formatted in bulk
-            detail.run([f"{indent}[{index}]: {inner} (0x{inner:X})" for index, inner in enumerate(value)])
+            width = NESTED_HEX_WIDTHS.get(name, 0)  # (a word's four digits, as the plugin's vw3.file.value)
+            detail.run([f"{indent}[{index}]: {inner} (0x{inner:0{width}X})" for index, inner in enumerate(value)])
             return
         for index, inner in enumerate(value):
             _field_lines(detail, depth + 1, f"[{index}]", inner)
     elif isinstance(value, bytes):
-        # (none: no line, as the plugin's tree and Wireshark's modbus show no empty field, FC12's no events)
+        # (none: no line, as the plugin's tree and Wireshark's modbus show no empty field, FC12's no events;
+        # its hex as Wireshark writes a field of bytes: `Data: ff00`)
         if value:
-            texts.append(f"{label}: {value.hex(' ')}")
+            texts.append(f"{label}: {value.hex()}")
     elif name in _HEX_NAMES:  # `Run indicator: ON (0xff)`, `Unknown (0x76)`: named or not, as the plugin's
         texts.append(f"{label}: {_hex_named(name, value)}")
     elif isinstance(value, int) and not isinstance(value, bool):
@@ -379,7 +392,9 @@ def _head_lines(detail: _Detail, frame: Frame) -> None:
     if kind is _EXCEPTION:
         exception = frame.exception_code
         shown = "?" if exception is None else exception  # (none: a malformed exception, as its summary)
-        detail.styled(f"        Exception: {shown} {SPEC.exception_name(exception)}", "vw3.exception")
+        # (as the plugin's vw3.exception_code, Wireshark's value string: `Illegal Data Address (2)`, `Unknown (9)`)
+        name = SPEC.exception_name(None) if exception is None else _NAMED["exception_code"].get(exception, "Unknown")
+        detail.styled(f"        {_TITLES['exception_code']}: {name} ({shown})", "vw3.exception")
         if frame.exception_text is not None:
             detail.styled(f"        Meaning on this device: {frame.exception_text}", "vw3.exception")
     elif frame.fields is not None:
@@ -397,7 +412,7 @@ def _head_lines(detail: _Detail, frame: Frame) -> None:
                     if len(lines) >= _INT_FIELD_LINES_MAX:
                         lines.clear()
                     label = "        " + field_label(key, function)
-                    names = value_names().get(key)
+                    names = value_names().get(key) or _NAMED.get(key)
                     shown = f"{value} (0x{value:0{width}X})" if names is None else named_value(names, value)
                     line = lines[kept, value] = f"{label}: {shown}"
                 add(line)

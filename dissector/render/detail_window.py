@@ -6,33 +6,37 @@
   START_WORDS); none where the request is not known;
 - the hex of a field the plugin shows in decimal and hex (data/pdu_fields.toml base DEC_HEX: a status word,
   a mask, FC8's more-follows byte) written at the field's width in the frame, data/modbus.toml [layouts]
-  (`Status: 0 (0x0000)` for FC11's 16-bit status word, `And mask: 242 (0x00F2)`, `More follows: 0 (0x00)`),
-  as Wireshark writes a field's hex; other numbers keep their shortest hex (`Start: 100 (0x64)`).
+  (`Status: 0 (0x0000)` for FC11's 16-bit status word, `And mask: 242 (0x00F2)`, `More follows: 0 (0x00)`,
+  FC17's `Server id: 1 (0x01)`, each word of FC24's FIFO values and FC20's record `[0]: 1 (0x0001)`),
+  as Wireshark writes a field's hex; other numbers keep their shortest hex (`Start address: 100 (0x64)`).
 """
 from __future__ import annotations
 
 from dissector.model import Frame, Kind
 from dissector.render.describe import pdu_fields
+from dissector.render.filter_fields import CATALOGUE
 from dissector.protocol.spec import SPEC
 from dissector.protocol.table import TABLE, layout_for, lift_of
 
-_DIGITS = {"u8": 2, "u16": 4, "odd": 2}  # hex digits of a layout field type (`odd`: a register's lone byte)
+_DIGITS = {"u8": 2, "u16": 4, "odd": 2, "words": 4}  # hex digits of a layout field type (`odd`: a register's
+# lone byte; `words`: each word of a list, FC24's FIFO values, FC20's and FC21's record words)
 
 
 def _widths() -> tuple[dict[tuple[int, Kind, str], int], dict[str, int]]:
     """({(function, kind, key): digits} of the DEC_HEX fields of each code's layout, {key: digits} of those
     of a part a field switches to (FC43's device id answer), where no two parts disagree)."""
     wanted: dict[str, set[str]] = {}  # layout: its DEC_HEX fields
-    for entry in pdu_fields().get("field", ()):
+    shows = pdu_fields()["pdu"]  # (data/fields.toml's fields of PDU fields: FC17's server id)
+    for entry in [*pdu_fields().get("field", ()), *CATALOGUE]:
         if entry.get("base") in ("DEC_HEX", "HEX"):
-            for pdu in entry.get("pdu", ()):
+            for pdu in entry.get("pdu", shows.get(entry.get("filter"), ())):
                 layout, _, key = pdu.partition(".")
                 wanted.setdefault(layout, set()).add(key)
     digits: dict[str, dict[str, int]] = {}  # layout: {key: digits}
     for layout, keys in wanted.items():
         for spec in SPEC.layouts.get(layout) or SPEC.parts.get(layout, ()):
             key, _, kind = spec.partition(":")
-            kind = kind.partition("(")[0]
+            kind = kind.partition("(")[0].partition("?")[0]  # (`u8?(byte_count)`: a u8 where there is room)
             if key in keys and kind in _DIGITS:
                 digits.setdefault(layout, {})[key] = _DIGITS[kind]
     top: dict[tuple[int, Kind, str], int] = {}

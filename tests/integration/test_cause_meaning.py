@@ -53,7 +53,7 @@ def test_sel749m_meaning_is_the_cause(tmp_path: Path, monkeypatch: pytest.Monkey
     assert verbose.split("\n\n")[1].splitlines()[3:8] == [
         "        Slave: 3",
         "        Function: 3 (0x03) Read Holding Registers, exception (0x83)",
-        "        Exception: 2 Illegal Data Address",
+        "        Exception code: Illegal Data Address (2)",
         f"        Meaning on this device: {SEL_MEANINGS[0]}",
         "        CRC: 0x3161 [CRC ok]",
     ]
@@ -88,7 +88,7 @@ def test_atv71_and_generic_meanings(tmp_path: Path, monkeypatch: pytest.MonkeyPa
     # The generic device has no meaning of its own: the spec's name alone
     verbose = run_cli(["--profile", "generic", "-V", path])[1]
     assert meaning_lines(verbose) == []
-    assert verbose.count("        Exception: 3 Illegal Data Value\n") == 2
+    assert verbose.count("        Exception code: Illegal Data Value (3)\n") == 2
     frames = [json.loads(line) for line in run_cli(["--profile", "generic", "--json", path])[1].splitlines()]
     assert [frame.get("exception_meaning") for frame in frames[1::2]] == [None, None]
 

@@ -218,9 +218,9 @@ FIFO_DETAIL = """Frame 2: 14 bytes at offset 6, response (RTU)
         Byte count: 8 (0x8)
         FIFO count: 3 (0x3)
         Values (3)
-            [0]: 1 (0x1)
-            [1]: 2 (0x2)
-            [2]: 3 (0x3)
+            [0]: 1 (0x0001)
+            [1]: 2 (0x0002)
+            [2]: 3 (0x0003)
         CRC: 0xA06F [CRC ok]
     Request in frame: 1
     Response time: 10.000 ms"""

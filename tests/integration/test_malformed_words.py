@@ -148,7 +148,7 @@ def test_an_exception_without_a_code(tmp_path: Path, monkeypatch: pytest.MonkeyP
         "     2     0.500000   1 exception Read Holding Registers: exception ? (Missing exception code) [#1, 500.0 ms]"
         + "".join(f" [warning: {text}]" for text in NO_CODE_WARNINGS) + "  CRC ok")
     out = decode_frames(NO_CODE, tmp_path, monkeypatch, pure, "-n", "-V")
-    assert "        Exception: ? Missing exception code" in out.splitlines()
+    assert "        Exception code: Missing exception code (?)" in out.splitlines()
 
 
 def test_the_plugin_says_an_exception_without_a_code_is_malformed(tmp_path: Path) -> None:

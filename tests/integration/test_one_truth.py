@@ -318,7 +318,7 @@ def test_plc_style_is_the_same_in_every_output(tmp_path: Path) -> None:
         "     4            -   1 response  Read Input Registers 30101..30108 (8): 30101=250 ")
     detail = run_cli([*plc, "-V", "-c", "2", sel])[1].splitlines()
     assert "        Register 40001: 403 (0x0193)" in detail and "        Register 40016: 958 (0x03BE)" in detail
-    assert detail[4:8] == ["        Start: 0 (0x0)", "        Quantity: 16 (0x10)", "        PLC references: 40001..40016",
+    assert detail[4:8] == ["        Start address: 0 (0x0)", "        Quantity: 16 (0x10)", "        PLC references: 40001..40016",
                            "        CRC: 0x0644 [CRC ok]"]
     assert detail.count("        PLC references: 40001..40016") == 2  # the request and its answer
     assert "PLC references" not in run_cli(["-V", "-c", "2", sel])[1]  # (a cached detail keeps no style)

@@ -53,7 +53,7 @@ def test_atv71_meaning_of_a_refused_read_only_write(tmp_path: Path, monkeypatch:
     assert verbose[1].splitlines()[3:] == [
         "        Slave: 12",
         "        Function: 6 (0x06) Write Single Register, exception (0x86)",
-        "        Exception: 2 Illegal Data Address",
+        "        Exception code: Illegal Data Address (2)",
         f"        Meaning on this device: {MEANING}",
         "        CRC: 0x6252 [CRC ok]",
         "    Request in frame: 1",

@@ -139,7 +139,7 @@ def test_lost_lf_detail_and_json(monkeypatch: pytest.MonkeyPatch) -> None:
         "    Modbus ASCII",
         "        Slave: 12",
         "        Function: 3 (0x03) Read Holding Registers",
-        "        Start: 8400 (0x20D0)",
+        "        Start address: 8400 (0x20D0)",
         "        Quantity: 3 (0x3)",
         "        LRC: 0xFE [LRC ok]",
         "    Response in frame: 2",

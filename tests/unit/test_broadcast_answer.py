@@ -95,7 +95,7 @@ def test_json_and_detail(monkeypatch: pytest.MonkeyPatch) -> None:
         "Modbus RTU",
         "Slave: 0",
         "Function: 16 (0x10) Write Multiple Registers",
-        "Start: 9001 (0x2329)",
+        "Start address: 9001 (0x2329)",
         "Quantity: 1 (0x1)",
         "CRC: 0x" + WRITTEN[-1:].hex().upper() + WRITTEN[-2:-1].hex().upper() + " [CRC ok]",
         f"Warning: {AFTER}",

@@ -15,10 +15,10 @@ def test_exception_function_line(monkeypatch: pytest.MonkeyPatch, pure: bool) ->
     use_engine(monkeypatch, pure)
     status, out, err = run_cli([*ARGV, "-V"])
     assert status == 0, err
-    assert [line.strip() for line in out.splitlines() if "Function:" in line or "Exception:" in line] == [
+    assert [line.strip() for line in out.splitlines() if "Function:" in line or "Exception code:" in line] == [
         "Function: 3 (0x03) Read Holding Registers",
         "Function: 3 (0x03) Read Holding Registers, exception (0x83)",
-        "Exception: 2 Illegal Data Address",
+        "Exception code: Illegal Data Address (2)",
     ]
     status, out, err = run_cli([*ARGV, "-T", "fields", "-e", "frame", "-Y", 'function == 3 && kind == "exception"'])
     assert (status, out) == (0, "2\n"), err

@@ -255,7 +255,7 @@ def test_a_quantity_0_span_is_what_the_request_says_in_every_output(tmp_path: Pa
             assert done.stdout.splitlines() == [line.format(a=a, b=b, c=c, d=d) for line in lines]
     status, out, err = run_cli([str(capture), "-V"])
     assert (status, err) == (0, "")
-    assert out.split("\n\n")[0].splitlines()[4:6] == ["        Start: 8400 (0x20D0)", "        Quantity: 0 (0x0)"]
+    assert out.split("\n\n")[0].splitlines()[4:6] == ["        Start address: 8400 (0x20D0)", "        Quantity: 0 (0x0)"]
     status, out, err = run_cli([str(capture), "--json"])
     records = [json.loads(line) for line in out.splitlines()]
     assert [(r["start"], r["quantity"], r.get("registers"), "span_label" in r) for r in records] == [

@@ -16,7 +16,7 @@ def test_odd_run_indicator_and_binary_data() -> None:
     # would be: tests/unit/test_server_id_length.py): the number, a warning, the bytes in hex
     status, out, _ = run_cli(["-n", "--hex", "11 11", "--hex", "11 11 04 01 12 01 02", "-V"])
     assert status == 0
-    assert "        Run indicator: Unknown (0x12)\n        Additional data: 01 02\n" in out
+    assert "        Run indicator: Unknown (0x12)\n        Additional data: 0102\n" in out
     assert "Warning: run indicator 0x12 is neither 0x00 (OFF) nor 0xFF (ON)" in out
     # byte count 1: the server id alone (data/modbus.toml ?(byte_count-1)), the run indicator missing
     status, out, _ = run_cli(["-n", "--hex", "11 11", "--hex", rtu("11 11 01 B4").hex(" "), "--json"])
