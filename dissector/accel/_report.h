@@ -271,8 +271,10 @@ static int series_values_add(PyObject *series, unsigned long long more) {
  * 0, or -1 with an exception set (no memory: the trends are dropped, the run ends on it). */
 static int report_device(Report *r, Slave *s, int slave) {
     Dense kept = {0};
-    int status = 0;
-    for (Trend *t = (Trend *)r->trends.items; t < (Trend *)r->trends.items + r->trends.count; t++) {
+    int status = 0, held = 0;
+    for (Trend *t = (Trend *)r->trends.items; !held && t < (Trend *)r->trends.items + r->trends.count; t++)
+        held = (int)PARAM_SLAVE(t->key) == slave;
+    for (Trend *t = (Trend *)r->trends.items; held && t < (Trend *)r->trends.items + r->trends.count; t++) {
         Trend *into = NULL;
         if ((int)PARAM_SLAVE(t->key) != slave && status == 0 &&
             (into = dense_add(&kept, &TREND_KIND, &t->key, 0)) != NULL) {
@@ -283,9 +285,11 @@ static int report_device(Report *r, Slave *s, int slave) {
         else if (t->columns != NULL && status == 0) status = series_values_add(t->series, t->values);
         trend_release(t);
     }
-    dense_free(&r->trends);
-    r->trends = kept;
-    r->full = 0;
+    if (held) { /* (none of the slave's: the table stays as it is) */
+        dense_free(&r->trends);
+        r->trends = kept;
+        r->full = 0;
+    }
     Py_XSETREF(r->namers[slave], Py_XNewRef(s->namer));
     r->named[slave] = ++r->namings;
     if (++r->epochs[slave] >= 1u << 16) {
