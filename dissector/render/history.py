@@ -102,7 +102,7 @@ class Listener(Protocol):
 
     def rehomed(self, slave: int, homes: bytes) -> None:
         """Before renamed: its new device reads a table with another's code (History._rehome), what was kept
-        of each table moves to homes[table]."""
+        moves to homes[t] of the protocol tables t of the codes that set it (as the store: stats_store.homes_of)."""
 
 
 class ProvisionalListener(Listener, Protocol):
