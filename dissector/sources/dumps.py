@@ -1,9 +1,11 @@
-"""Dumps of a raw byte stream made by `xxd` and `hexdump -C` (also `xxd -u`, `-g N`, `-a`).
+"""Dumps of a raw byte stream made by `xxd`, `hexdump -C` (also `xxd -u`, `-g N`, `-a`) and `od -t x1`.
 
     00000000: 0c03 20d0 0003 0eef 0c03 0680 0000 0300  .. .............        xxd
     00000000  0c 03 20 d0 00 03 0e ef  0c 03 06 80 00 00 03 00  |.. .............|   hexdump -C
     *                                                    the line above repeats up to the next offset
     00000013                                             hexdump -C: the length, on a line of its own
+    000000 0c 03 20 d0 00 03 0e ef 0c 03 06 80 00 00 03 00      od -A x -t x1 (od -t x1: octal offsets,
+    0000020 02 17 e4                                              -A d: decimal; -t x1z: a >...< column)
 
 The offset column says where each line's bytes belong: a `*` (both tools squeeze repeated lines)
 is expanded, and a line that does not continue where the previous one ended is an error, since
@@ -24,33 +26,64 @@ from dissector.sources.hexdump import cut_short, ended_lines
 _XXD = re.compile(r"([0-9a-fA-F]{6,16}): ((?:[0-9a-fA-F]{2})+(?: (?:[0-9a-fA-F]{2})+)*)(?:  .*)?")
 _HEXDUMP_C = re.compile(r"([0-9a-fA-F]{8,16})  ((?:[0-9a-fA-F]{2} {1,2})*[0-9a-fA-F]{2}) *(?:\|.*\|)?")
 _OFFSET_ONLY = re.compile(r"[0-9a-fA-F]{8,16}")
+# od's offsets are in the radix -A chose (hex, 6 digits; octal by default or decimal, 7): read as hex, `000010` was the
+# bytes 00 00 10 of a one-frame-a-line hex dump, every line's offset put into the stream (hunt 58).
+_OD = re.compile(r"([0-9a-fA-F]{6,16})((?: [0-9a-fA-F]{2})+)(?: +>.*<)? *")
+_OD_OFFSET_ONLY = re.compile(r"[0-9a-fA-F]{6,16}")
+RADIXES = (8, 10, 16)  # (the order a 7-digit offset is tried in: od's default octal first)
 # Bytes all the `*` lines of one dump may stand for. A squeezed run is idle line or one repeated
 # poll; 16 MiB of it is far more than a dump pasted as text holds, and decodes in about a second.
 # Beyond, a few bytes of text would cost minutes (58 bytes claimed 192 MiB), so the dump is refused.
 MAX_EXPANSION = 1 << 24
 
 
-def _parse(line: str, tool: str) -> tuple[int, bytes] | None:
+def _parse(line: str, tool: str, radix: int = 16) -> tuple[int, bytes] | None:
     """(offset, bytes) of a dump line; (offset, b"") for an offset alone; None for `*`."""
     text = line.rstrip("\r\n")
     if text.strip() == "*":
         return None
-    match = (_XXD if tool == "xxd" else _HEXDUMP_C).fullmatch(text)
+    match = {"xxd": _XXD, "hexdump-C": _HEXDUMP_C, "od": _OD}[tool].fullmatch(text)
+    alone = {"hexdump-C": _OFFSET_ONLY, "od": _OD_OFFSET_ONLY}.get(tool)
+    if match is None and alone is not None and alone.fullmatch(text.strip()):
+        return _offset(text.strip(), radix), b""
     if match is None:
-        if tool == "hexdump-C" and _OFFSET_ONLY.fullmatch(text.strip()):
-            return int(text.strip(), 16), b""
         raise ValueError(f"not a {tool} line: {text[:60]!r}")
-    return int(match.group(1), 16), bytes.fromhex(match.group(2).replace(" ", ""))
+    return _offset(match.group(1), radix), bytes.fromhex(match.group(2).replace(" ", ""))
+
+
+def _offset(text: str, radix: int) -> int:
+    try:
+        return int(text, radix)
+    except ValueError:
+        raise ValueError(f"offset {text!r} is not a number in base {radix}, as the dump's offsets before") from None
+
+
+def _od_radix(text: str, position: int, squeezed: bool) -> int | None:
+    """The radix of od's offsets, from the first one after 0: the one that says `position` (after a `*`,
+    where the position is not known, the first radix it is a number in and past the position: `0000096`
+    is -A d's). Six digits are -A x's alone: a hex dump missing a line is not read as octal."""
+    radixes = (16,) if len(text) == 6 else RADIXES  # (od -A x writes 6 digits, -A o and -A d 7)
+    if squeezed:
+        return next((radix for radix in radixes if (_fits(text, radix) or 0) > position), None)
+    return next((radix for radix in radixes if _fits(text, radix) == position), None)
+
+
+def _fits(text: str, radix: int) -> int | None:
+    try:
+        return int(text, radix)
+    except ValueError:
+        return None
 
 
 # The start of a dump line cut short: its offset, the hex it holds (the last number maybe cut), and where
 # the cut line stops: at its end, or in the character column after the hex.
 _CUT = {"xxd": re.compile(r"([0-9a-fA-F]{6,16}):((?: [0-9a-fA-F]+)*)(?: .*)?"),
-        "hexdump-C": re.compile(r"([0-9a-fA-F]{8,16})((?: {1,2}[0-9a-fA-F]+)*)(?: +\|.*)? *")}
+        "hexdump-C": re.compile(r"([0-9a-fA-F]{8,16})((?: {1,2}[0-9a-fA-F]+)*)(?: +\|.*)? *"),
+        "od": re.compile(r"([0-9a-fA-F]{6,16})((?: [0-9a-fA-F]+)*)(?: +>.*)? *")}
 _CUT_OFFSET = re.compile(r"[0-9a-fA-F]{1,16}:?")
 
 
-def _cut(line: str, tool: str) -> tuple[int | None, bytes, str] | None:
+def _cut(line: str, tool: str, radix: int = 16) -> tuple[int | None, bytes, str] | None:
     """(offset, whole bytes, the cut digit) of the input's last line when it is one of the tool's lines cut
     short (no line end: the dump was copied while written); None when it is no such line."""
     text = line.rstrip("\r\n")
@@ -63,12 +96,16 @@ def _cut(line: str, tool: str) -> tuple[int | None, bytes, str] | None:
     if any(len(group) % 2 for group in groups[:-1]):
         return None  # half a byte before the last number: not a cut
     digits = "".join(groups)
-    return int(match.group(1), 16), bytes.fromhex(digits[: len(digits) & ~1]), digits[len(digits) & ~1 :]
+    offset = _fits(match.group(1), radix)
+    if offset is None:
+        return None
+    return offset, bytes.fromhex(digits[: len(digits) & ~1]), digits[len(digits) & ~1 :]
 
 
 def dump_tool(text: str, complete: bool) -> str | None:
-    """"xxd" or "hexdump-C" when every line of the sample is one of that tool's lines, else None (the
-    input's last line may be one cut short)."""
+    """"xxd", "hexdump-C" or "od" when every line of the sample is one of that tool's lines, else None (the
+    input's last line may be one cut short). od's lines at offset 0 are its (no frame starts 00 00 00):
+    the reader tells the radix of its offsets, and refuses a dump whose offsets do not go on in one."""
     lines = text.splitlines()
     unended = not text.endswith(("\n", "\r"))
     if not complete and unended:
@@ -76,7 +113,7 @@ def dump_tool(text: str, complete: bool) -> str | None:
     lines = [line for line in lines if line.strip()]
     if not lines:
         return None
-    for tool in ("xxd", "hexdump-C"):
+    for tool in ("xxd", "hexdump-C", "od"):
         try:
             parsed = [_parse(line, tool) for line in lines[:-1]]
             try:
@@ -102,6 +139,15 @@ def _marked(lines: list[str], tool: str) -> bool:
     return bool(data_lines) and all(line.rstrip().endswith("|") for line in data_lines)
 
 
+def _first_radix(line: str, position: int, squeezed: bool) -> int | None:
+    """od's radix once a line's offset is not 0 (0 meanwhile: any radix reads it); None: no radix fits."""
+    match = _OD.fullmatch(line.rstrip("\r\n"))
+    text = match.group(1) if match else line.strip()
+    if text == "*" or _fits(text, 16) in (0, None):
+        return 0
+    return _od_radix(text, position, squeezed)
+
+
 def _repeated(line: bytes, count: int, chunk_size: int) -> Iterator[Chunk]:
     """`count` copies of a squeezed line, in chunks of about chunk_size bytes (not one a line)."""
     per_chunk = max(1, chunk_size // len(line))
@@ -119,13 +165,19 @@ def read_dump(tool: str) -> Callable[[Input, WarningLog, int], Iterator[Chunk]]:
         repeat: bytes | None = None  # the line a `*` repeats
         squeezed = False
         cut: tuple[int | None, bytes, str] | None = None
+        radix: int | None = 0 if tool == "od" else 16  # (0: od's, not told yet: by its first offset after 0)
         for number, line, ended in ended_lines(inp, chunk_size):
             if not line.strip():
                 continue
+            if radix == 0:
+                radix = _first_radix(line, position, squeezed)
+                if radix is None:
+                    raise SourceError(f"{inp.name} line {number}: offset {line.split()[0]} does not follow the"
+                                      f" {position} bytes before (bytes missing or repeated)")
             try:
-                parsed = _parse(line, tool)
+                parsed = _parse(line, tool, radix or 16)
             except ValueError as error:
-                cut = None if ended else _cut(line, tool)
+                cut = None if ended else _cut(line, tool, radix or 16)
                 if cut is None:
                     raise SourceError(f"{inp.name} line {number}: {error}") from None
                 log.warn("truncated input", cut_short(inp.name, number, cut[1], cut[2]))

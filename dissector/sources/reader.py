@@ -38,12 +38,12 @@ __all__ = ["FORMATS", "Source", "SourceError", "detect_format", "open_source"]
 
 # --format values -> Source.format
 FORMATS = {"raw": "raw", "pcap": "pcap", "pcapng": "pcapng", "hex": "hexdump", "hexdump": "hexdump",
-           "decimal": "hexdump", "ascii": "ascii", "xxd": "xxd", "hexdump-C": "hexdump-C", "traffic": "traffic",
+           "decimal": "hexdump", "ascii": "ascii", "xxd": "xxd", "hexdump-C": "hexdump-C", "od": "od", "traffic": "traffic",
            "tshark-x": "tshark-x"}
 # A format given for a one-frame-a-line dump also says how its numbers are written.
 NOTATIONS = {"hex": HEX, "hexdump": HEX, "decimal": DECIMAL}
 MODES = ("rtu", "ascii")
-TEXT_FORMATS = frozenset({"hexdump", "xxd", "hexdump-C", "traffic", "ascii", "tshark-x"})  # read as text when a BOM says so
+TEXT_FORMATS = frozenset({"hexdump", "xxd", "hexdump-C", "od", "traffic", "ascii", "tshark-x"})  # read as text when a BOM says so
 SNIFF_BYTES = 512  # enough to see a magic number or a few text lines
 SNIFF_LINES = 4  # a text sample with this many lines is enough to judge
 SNIFF_COMMENTS = 65536  # but a hex dump's header of comments is read to its first data line, this far
@@ -68,6 +68,7 @@ READERS: dict[str, Reader] = {
     "hexdump": read_hexdump,
     "xxd": read_dump("xxd"),
     "hexdump-C": read_dump("hexdump-C"),
+    "od": read_dump("od"),
     "traffic": read_traffic,  # Modbus Poll / Modbus Slave traffic logs
     "tshark-x": read_packet_dump,  # tshark -x, vw3-decode -x
 }
