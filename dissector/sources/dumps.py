@@ -148,6 +148,23 @@ def _first_radix(line: str, position: int, squeezed: bool) -> int | None:
     return _od_radix(text, position, squeezed)
 
 
+# The first line of a dump in 16-bit words (BSD hexdump's default, od -x): `0000000 030c d020 ...`.
+_WORDS = re.compile(r"0{6,16}(?: [0-9a-fA-F]{4})+ *")
+
+
+def word_dump(text: str) -> bool:
+    """Is the text a dump in 16-bit words? Their bytes are in the dumping machine's order (030c for 0c 03 on
+    a little-endian one), which the text does not say: read as a hex dump, it gave swapped or invented bytes."""
+    first = next((line for line in text.splitlines() if line.strip()), "")
+    return _WORDS.fullmatch(first.rstrip("\r\n")) is not None
+
+
+def refuse_words(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
+    raise SourceError(f"{inp.name} line 1: a dump in 16-bit words (hexdump's default, od -x), whose byte order is"
+                      " the dumping machine's: dump the bytes with hexdump -C, od -t x1 or xxd")
+    yield  # (a reader: a generator)
+
+
 def _repeated(line: bytes, count: int, chunk_size: int) -> Iterator[Chunk]:
     """`count` copies of a squeezed line, in chunks of about chunk_size bytes (not one a line)."""
     per_chunk = max(1, chunk_size // len(line))

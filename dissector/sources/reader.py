@@ -24,7 +24,7 @@ from typing import BinaryIO
 from dissector.protocol.ascii import MODE_REACH, MODE_SAMPLE, sample_mode  # (MODE_SAMPLE: codegen's)
 from dissector.sources.common import Input, SourceError, WarningLog
 from dissector.sources.compressed import HEADER_BYTES, Decompressed, compression
-from dissector.sources.dumps import dump_tool, read_dump
+from dissector.sources.dumps import dump_tool, read_dump, refuse_words, word_dump
 from dissector.sources.encoding import Encoding, decoded, marked, text_input
 from dissector.sources.hexdump import CONTROL, characters, looks_like_hexdump, read_hexdump
 from dissector.sources.packetdump import looks_like_packet_dump, read_packet_dump
@@ -69,6 +69,7 @@ READERS: dict[str, Reader] = {
     "xxd": read_dump("xxd"),
     "hexdump-C": read_dump("hexdump-C"),
     "od": read_dump("od"),
+    "words": refuse_words,  # hexdump's default, od -x: refused, naming the dumps that say their bytes
     "traffic": read_traffic,  # Modbus Poll / Modbus Slave traffic logs
     "tshark-x": read_packet_dump,  # tshark -x, vw3-decode -x
 }
@@ -120,6 +121,8 @@ def detect_format(sample: bytes, complete: bool) -> tuple[str, str | None]:
     tool = dump_tool(text, complete)
     if tool is not None:
         return tool, None
+    if word_dump(text):
+        return "words", None
     if looks_like_packet_dump(text, complete):
         return "tshark-x", None
     if looks_like_hexdump(text, complete):
