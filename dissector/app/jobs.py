@@ -16,7 +16,7 @@ from typing import Any
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
-from dissector.app.rings import group_files
+from dissector.app.rings import group_files, missing_files
 from dissector.errors import ExitStatus, ProfileError, UsageError
 from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
@@ -86,7 +86,9 @@ def _chunks(files: tuple[str, ...], settings: JobSettings, tables: object, resul
             interface: int | None = None, recorded: list[Any] | None = None) -> Iterator[object]:
     """`recorded`: each file's Source.recorded_until, once read (the last says when the capture ends)."""
     offset = 0  # payload bytes of the files before: where each file starts in the capture's stream
-    for path in files:
+    for index, path in enumerate(files):
+        if index:
+            result.warnings.extend(missing_files(files[index - 1], path))  # (a ring's file missing: said)
         source = _open(path, settings, interface)
         try:
             tables.files.append((offset, os.path.basename(path)))  # type: ignore[attr-defined]

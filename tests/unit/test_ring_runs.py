@@ -9,6 +9,8 @@ from __future__ import annotations
 import shutil
 from pathlib import Path
 
+import pytest
+
 from helpers import run_cli
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -52,3 +54,13 @@ def test_a_missing_file_is_said(tmp_path: Path) -> None:
                    " what it held is not decoded, and a request at the end of this file may show no response or"
                    " pair with a later answer\n")
     assert run_cli([str(path) for path in files])[2] == ""
+
+
+def test_a_missing_file_is_said_by_parquet(tmp_path: Path) -> None:
+    pytest.importorskip("pyarrow")
+    files = _ring(OTHER, tmp_path / "a", "duration:0.5")
+    status, out, err = run_cli(["--parquet", str(tmp_path / "data"), str(files[0]), str(files[2])])
+    assert (status, out) == (0, f"{tmp_path / 'a' / 'bus.pcap'}: 4 frames, 6 registers, 2 events\n")
+    assert err == (f"vw3-decode: warning: {files[0]}: the ring buffer's file 00002 is missing before {files[2].name}:"
+                   " what it held is not decoded, and a request at the end of this file may show no response or"
+                   " pair with a later answer\n")
