@@ -28,17 +28,16 @@ from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args
 from dissector.app.rings import group_files
-from dissector.app.preselect import rereadable
 from dissector.app.samefile import refuse_same_files
 from dissector.render.buses import Bus, Buses
 from dissector.render.output import Output
-from dissector.protocol.ascii import holds_frame
 from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.app.inputs import (
-    CopyEnd, choose_profiles_first, comments_of, input_line, inputs, is_pcapng_file, item_pieces, keep_interface,
-    observe_records, profile_notes, several_captures, tell_comments, write_interface, write_units,
+    CopyEnd, choose_over_all, choose_profiles_first, comments_of, holds_ascii, input_line, inputs, is_pcapng_file,
+    item_pieces, keep_interface, observe_records, profile_notes, several_captures, tell_comments, write_interface,
+    write_units,
 )
 from dissector.sources.reader import SourceError
 from dissector.sources.trail import RecordTrail
@@ -390,6 +389,7 @@ def _decode_inputs(
     devices: dict[object, Annotator | None] = {}  # per bus (pcapng interface) its annotator
     # The devices as they are before any frame, for the other interfaces of a pcapng (~13 ms a copy).
     pristine = copy.deepcopy(annotate) if annotate is not None and any(map(is_pcapng_file, args.files)) else None
+    chosen_over_all = choose_over_all(args, env, annotate)
     try:
         for (title, chunks, mode, take_warnings, recorded, timed, fix, (path, source_format),
              bus, again) in inputs(args, env):
@@ -414,7 +414,8 @@ def _decode_inputs(
                 for warning in take_warnings():
                     env.stderr.write(f"{PROG}: warning: {shown(warning)}\n")
 
-            choose_profiles_first(annotate, args, chunks, mode, path, again, line.baud, fix)
+            if not chosen_over_all:
+                choose_profiles_first(annotate, args, chunks, mode, path, again, line.baud, fix)
             framer = AsciiFramer(line.baud) if mode == "ascii" else RtuFramer(line.baud)  # (its silences: evidence)
             dissector = Dissector(
                 framer=framer,
@@ -433,7 +434,7 @@ def _decode_inputs(
                 # A PNG, a line read at the wrong speed: say so once, not only as noise and damage
                 # (--hex bytes typed from a manual have their own notes: a CRC typo is spelled out).
                 name = path if path != "-" else "standard input"
-                hint = " (it holds Modbus ASCII frames: try --mode ascii)" if mode == "rtu" and _holds_ascii(path) else ""
+                hint = " (it holds Modbus ASCII frames: try --mode ascii)" if mode == "rtu" and holds_ascii(path) else ""
                 env.stderr.write(
                     f"{PROG}: warning: {shown(name)}: no valid Modbus {mode.upper()} frame in {sinks.input_bytes} bytes "
                     "(every item is noise or a frame with a bad check): not a Modbus capture, or another format "
@@ -442,22 +443,6 @@ def _decode_inputs(
     except BaseException as error:
         sinks.abandon(isinstance(error, SourceError))
         raise
-
-
-ASCII_HINT_BYTES = 1 << 16  # how much of a file the --mode ascii hint reads again (once, after the run)
-
-
-def _holds_ascii(path: str) -> bool:
-    """Whether the start of a file read as RTU holds a whole Modbus ASCII frame (an ASCII line behind more
-    noise than mode detection samples): the hint names --mode ascii. Standard input, a FIFO cannot be read
-    again (opened again, a FIFO would wait for a writer)."""
-    if not rereadable(path):
-        return False
-    try:
-        with open(path, "rb") as file:
-            return holds_frame(file.read(ASCII_HINT_BYTES))
-    except OSError:
-        return False
 
 
 def _live(args: argparse.Namespace, env: Environment) -> int:

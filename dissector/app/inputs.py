@@ -313,6 +313,35 @@ def tell_comments(sinks: Any, path: str | None, stderr: Any) -> None:
             stderr.write(f"{PROG}: {shown(name)}: {what}: -V and --json show them\n")
 
 
+def choose_over_all(args: DecodeOptions, env: Any, annotate: Any) -> bool:
+    """Profile `auto` over every file of the run before the first is decoded, where each can be read twice:
+    the files are one bus's (their evidence is pooled, cited by file), so the same bytes are named alike
+    whatever the files' order; a file decoded before the evidence of a later one was named by its own
+    alone. False (each input chooses before its own decode): one input, standard input or a FIFO among
+    them, or a pcapng's several interfaces (a device each: their own choices)."""
+    from dissector.app.preselect import rereadable
+
+    if getattr(annotate, "selector", None) is None or not several_captures(args) \
+            or not all(map(rereadable, args.files)):  # (before any is opened: standard input is read once)
+        return False
+    listed = list(inputs(args, env))
+    try:
+        if any(bus is not None for *_rest, bus, _again in listed):
+            return False
+        selector = annotate.selector
+        for (title, chunks, mode, _warnings, _recorded, _timed, fix, (path, source_format), bus,
+             again) in listed:
+            selector.source = title  # (the evidence names the file it is in, as the decode cites it)
+            choose_profiles_first(annotate, args, chunks, mode, path, again,
+                                  input_line(path, source_format, args, bus).baud, fix)
+        return True
+    finally:
+        for entry in listed:
+            close = getattr(entry[1], "close", None)
+            if close is not None:
+                close()
+
+
 def choose_profiles_first(annotate: Any, args: DecodeOptions, chunks: Iterable[Chunk], mode: str,
                           path: str | None, again: Callable[[], Any] | None, baud: int,
                           fix: Callable[[list[Any]], list[Any]] | None = None) -> None:
@@ -329,3 +358,22 @@ def choose_profiles_first(annotate: Any, args: DecodeOptions, chunks: Iterable[C
             choose_profiles(annotate, reread, mode, baud, args.timeout)  # type: ignore[arg-type]
     else:
         annotate.thaw()  # type: ignore[union-attr]
+
+
+ASCII_HINT_BYTES = 1 << 16  # how much of a file the --mode ascii hint reads again (once, after the run)
+
+
+def holds_ascii(path: str) -> bool:
+    """Whether the start of a file read as RTU holds a whole Modbus ASCII frame (an ASCII line behind more
+    noise than mode detection samples): the hint names --mode ascii. Standard input, a FIFO cannot be read
+    again (opened again, a FIFO would wait for a writer)."""
+    from dissector.app.preselect import rereadable
+    from dissector.protocol.ascii import holds_frame
+
+    if not rereadable(path):
+        return False
+    try:
+        with open(path, "rb") as file:
+            return holds_frame(file.read(ASCII_HINT_BYTES))
+    except OSError:
+        return False

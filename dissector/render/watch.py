@@ -317,10 +317,12 @@ class Watcher:
                     parts.setdefault((slave, bits.bit_length() - 1, key[2]), states[key])
             order = {key: index for index, key in enumerate(states)}
             for key in [key for key in order if key[0] == slave]:
-                moved = states.pop(key)
                 tables = homes_of(moving.get(key, 1 << key[1]), homes)
+                home = (slave, min(tables), key[2])
+                if len(tables) == 1 and home == key:
+                    continue  # (it stays, where it was set)
+                moved = states.pop(key)
                 if len(tables) == 1:
-                    home = (slave, tables.pop(), key[2])
                     if home not in order or order[home] < order[key]:
                         states.pop(home, None)
                         states[home] = moved
