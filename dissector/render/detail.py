@@ -19,7 +19,7 @@ from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 from dissector.protocol.printable import printable
 from dissector.render.describe import UNKNOWN_SUBFUNCTION, count_text, named_value, pdu_fields, value_names
-from dissector.render.detail_window import NESTED_HEX_WIDTHS, hex_width, window_lines
+from dissector.render.detail_window import NESTED_HEX_WIDTHS, hex_width, implied_quantity, window_lines
 from dissector.render.filter_fields import CATALOGUE
 from dissector.render.registers import MASKS, mask_register
 from dissector.render.summary import check_untyped, crc_text, noise_info
@@ -387,7 +387,7 @@ def _head_lines(detail: _Detail, frame: Frame) -> None:
         add(line)
     else:
         add(f"        Function: {function} (0x{function:02X}) {function_text}")
-    if kind is _RESPONSE and frame.start is not None:
+    if kind is _RESPONSE and (frame.start is not None or frame.quantity is not None):
         out.extend(window_lines(frame, FUNCTION_LABELS))
     if kind is _EXCEPTION:
         exception = frame.exception_code
@@ -396,11 +396,12 @@ def _head_lines(detail: _Detail, frame: Frame) -> None:
         name = SPEC.exception_name(None) if exception is None else _NAMED["exception_code"].get(exception, "Unknown")
         detail.styled(f"        {_TITLES['exception_code']}: {name} ({shown})", "vw3.exception")
         if frame.exception_text is not None:
-            detail.styled(f"        Meaning on this device: {frame.exception_text}", "vw3.exception")
+            detail.styled(f"        {_TITLES['exception_meaning']}: {frame.exception_text}", "vw3.exception")
     elif frame.fields is not None:
         registers = frame.registers
         lines = _INT_FIELD_LINES
         labelled = function in _LABELLED  # (its lines kept by function too: `FIFO pointer address`)
+        implied = implied_quantity(frame)  # (FC5's, FC6's, FC22's one address: `[Quantity: 1]` after it)
         for key, value in frame.fields.items():
             if value is None or key[0] == "_" or key in ("values", "status") and registers:
                 continue
@@ -416,6 +417,8 @@ def _head_lines(detail: _Detail, frame: Frame) -> None:
                     shown = f"{value} (0x{value:0{width}X})" if names is None else named_value(names, value)
                     line = lines[kept, value] = f"{label}: {shown}"
                 add(line)
+                if implied is not None and key == implied[0]:
+                    add(implied[1])
                 continue
             if key == "trailing" and not value:
                 continue

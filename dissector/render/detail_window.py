@@ -1,4 +1,4 @@
-"""Two things -V says as the plugin's tree does (lua/src/show.lua), kept out of detail.py's line builders:
+"""Three things -V says as the plugin's tree does (lua/src/show.lua), kept out of detail.py's line builders:
 
 - the window a response takes from its request (data/modbus.toml [lift] `request.start`, `request.quantity`:
   a read's answer, FC23's, FC24's), which its bytes do not hold: `[Start address: 10]`, `[Quantity: 2]`,
@@ -8,7 +8,9 @@
   a mask, FC8's more-follows byte) written at the field's width in the frame, data/modbus.toml [layouts]
   (`Status: 0 (0x0000)` for FC11's 16-bit status word, `And mask: 242 (0x00F2)`, `More follows: 0 (0x00)`,
   FC17's `Server id: 1 (0x01)`, each word of FC24's FIFO values and FC20's record `[0]: 1 (0x0001)`),
-  as Wireshark writes a field's hex; other numbers keep their shortest hex (`Start address: 100 (0x64)`).
+  as Wireshark writes a field's hex; other numbers keep their shortest hex (`Start address: 100 (0x64)`);
+- the quantity of one that FC5's, FC6's and FC22's window has without its bytes counting it, `[Quantity: 1]`
+  after the address (implied_quantity), as --json's `quantity`.
 """
 from __future__ import annotations
 
@@ -63,17 +65,29 @@ def hex_width(frame: Frame, key: str) -> int:
 
 def window_lines(frame: Frame, labels: dict[tuple[int, str], str]) -> list[str]:
     """`[Start address: N]` (or the function's own word) and `[Quantity: N]` of a response's window where its
-    request gave it (`labels`: detail.FUNCTION_LABELS)."""
-    if frame.kind is not Kind.RESPONSE or frame.start is None:
+    request gave it (`labels`: detail.FUNCTION_LABELS); without its request, the quantity its byte count
+    gives ([lift] unpaired_unit), as --json's `quantity` and the plugin's tree."""
+    if frame.kind is not Kind.RESPONSE:
         return []
     lift = lift_of(frame.function, frame.kind)
     if lift is None:
         return []
     lines = []
-    if lift.start == "request.start":
+    if lift.start == "request.start" and frame.start is not None:
         title = next((label for (function, _key), label in labels.items() if function == frame.function),
                      "Start address")
         lines.append(f"        [{title}: {frame.start}]")
     if lift.quantity == "request.quantity" and frame.quantity is not None:
         lines.append(f"        [Quantity: {frame.quantity}]")
     return lines
+
+
+def implied_quantity(frame: Frame) -> tuple[str, str] | None:
+    """(the field it follows, `[Quantity: 1]`) where a frame's window is one address its bytes do not count
+    (data/modbus.toml [lift] `quantity = 1`: FC5, FC6, FC22), as the plugin's tree shows it (show.lua
+    add_window); None elsewhere."""
+    lift = lift_of(frame.function, frame.kind)
+    if lift is None or type(lift.quantity) is not int or frame.quantity is None or lift.start is None:
+        return None
+    return lift.start, f"        [Quantity: {frame.quantity}]"
+

@@ -73,7 +73,9 @@ def test_an_answer_to_a_damaged_request_has_no_addresses(tmp_path: Path, monkeyp
     status, out, err = run_cli([capture, "--profile", "atv71", "-V"])
     assert status == 0, err
     detail = out.split("Frame 4:")[1].split("Frame 5:")[0]
-    assert detail.splitlines()[6:] == [
+    # (the quantity its byte count gives, as --json's: no start address)
+    assert detail.splitlines()[5] == "        [Quantity: 3]"
+    assert detail.splitlines()[7:] == [
         "        Register ?: 32768 (0x8000)", "        Register ?: 32768 (0x8000)", "        Register ?: 2 (0x0002)",
         "        CRC: 0x24CE [CRC ok]", "    Request in frame: 3", "    Response time: 100.000 ms",
         f"    Note: {UNKNOWN}", ""]

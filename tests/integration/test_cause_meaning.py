@@ -42,7 +42,7 @@ def capture(path: Path, frames: list[str]) -> Path:
 
 
 def meaning_lines(verbose: str) -> list[str]:
-    return [line.strip() for line in verbose.splitlines() if "Meaning on this device" in line]
+    return [line.strip() for line in verbose.splitlines() if "Exception meaning on this device" in line]
 
 
 @pytest.mark.parametrize("pure", [False, True])
@@ -54,10 +54,10 @@ def test_sel749m_meaning_is_the_cause(tmp_path: Path, monkeypatch: pytest.Monkey
         "        Slave: 3",
         "        Function: 3 (0x03) Read Holding Registers, exception (0x83)",
         "        Exception code: Illegal Data Address (2)",
-        f"        Meaning on this device: {SEL_MEANINGS[0]}",
+        f"        Exception meaning on this device: {SEL_MEANINGS[0]}",
         "        CRC: 0x3161 [CRC ok]",
     ]
-    assert meaning_lines(verbose) == [f"Meaning on this device: {meaning}" for meaning in SEL_MEANINGS]
+    assert meaning_lines(verbose) == [f"Exception meaning on this device: {meaning}" for meaning in SEL_MEANINGS]
     frames = [json.loads(line) for line in run_cli(["--profile", "sel749m", "--json", path])[1].splitlines()]
     assert [(frame["frame"], frame["exception_meaning"]) for frame in frames if frame["kind"] == "exception"] == (
         list(zip(SEL_EXCEPTIONS, SEL_MEANINGS)))
@@ -82,7 +82,7 @@ def test_atv71_and_generic_meanings(tmp_path: Path, monkeypatch: pytest.MonkeyPa
     use_engine(monkeypatch, pure)
     path = str(capture(tmp_path / "atv71.pcap", ATV71))
     assert meaning_lines(run_cli(["--profile", "atv71", "-V", path])[1]) == [
-        f"Meaning on this device: {meaning}" for meaning in ATV71_MEANINGS]
+        f"Exception meaning on this device: {meaning}" for meaning in ATV71_MEANINGS]
     frames = [json.loads(line) for line in run_cli(["--profile", "atv71", "--json", path])[1].splitlines()]
     assert [frame.get("exception_meaning") for frame in frames[1::2]] == ATV71_MEANINGS
     # The generic device has no meaning of its own: the spec's name alone

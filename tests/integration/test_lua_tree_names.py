@@ -41,3 +41,18 @@ def test_names_as_the_plugin(tmp_path: Path) -> None:
     assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr), result.stderr[-2000:]
     # (the plugin's vw3.start is DEC: no hex after it)
     assert _lines(result.stdout) == [re.sub(r"^(Start address: \d+) \(0x\w+\)$", r"\1", line) for line in EXPECTED]
+
+
+def test_exception_meaning_as_the_plugin() -> None:
+    """A device's meaning of an exception: `Exception meaning on this device: ...` (the plugin's field title;
+    before: `Meaning on this device: ...`)."""
+    capture = ROOT / "captures" / "p38_protection.pcap"
+    python = subprocess.run([sys.executable, "-m", "dissector", "-V", str(capture)], cwd=ROOT, capture_output=True,
+                            text=True, check=True).stdout
+    ours = [line.strip() for line in python.splitlines() if "meaning on this device" in line.lower()]
+    result = run_tshark(capture, "-V")
+    assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr), result.stderr[-2000:]
+    theirs = [line.strip()[1:-1] for line in result.stdout.splitlines()
+              if line.strip().startswith("[Exception meaning on this device:")]
+    assert len(ours) == 2 and ours[0].startswith("Exception meaning on this device: address does not exist")
+    assert ours == theirs

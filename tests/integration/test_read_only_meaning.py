@@ -54,14 +54,14 @@ def test_atv71_meaning_of_a_refused_read_only_write(tmp_path: Path, monkeypatch:
         "        Slave: 12",
         "        Function: 6 (0x06) Write Single Register, exception (0x86)",
         "        Exception code: Illegal Data Address (2)",
-        f"        Meaning on this device: {MEANING}",
+        f"        Exception meaning on this device: {MEANING}",
         "        CRC: 0x6252 [CRC ok]",
         "    Request in frame: 1",
         "    Response time: 10.000 ms",
         f"    Note: {ATV71_NOTES[0]}",
     ]
-    assert [line.strip() for line in "\n".join(verbose).splitlines() if "Meaning on" in line] == [
-        f"Meaning on this device: {meaning}" for meaning in ATV71_MEANINGS]
+    assert [line.strip() for line in "\n".join(verbose).splitlines() if "meaning on this device" in line] == [
+        f"Exception meaning on this device: {meaning}" for meaning in ATV71_MEANINGS]
     frames = [json.loads(line) for line in run_cli(["--profile", "atv71", "--json", path])[1].splitlines()]
     assert [(frame["exception_meaning"], frame["notes"]) for frame in frames[1::2]] == [
         (meaning, [note]) for meaning, note in zip(ATV71_MEANINGS, ATV71_NOTES)]

@@ -74,5 +74,5 @@ def test_verbose_and_json(capture: Path, pure: bool, monkeypatch: pytest.MonkeyP
     verbose = run_cli(["--profile", "atv71", "-V", str(capture)])[1]
     assert [line.strip() for line in verbose.splitlines() if line.strip().startswith("Note:")] == [
         f"Note: {note}" for note in NOTES]
-    assert [line.strip() for line in verbose.splitlines() if "Meaning on this device" in line] == [
-        f"Meaning on this device: {meaning}" for meaning in MEANINGS]
+    assert [line.strip() for line in verbose.splitlines() if "Exception meaning on this device" in line] == [
+        f"Exception meaning on this device: {meaning}" for meaning in MEANINGS]

@@ -55,7 +55,7 @@ def test_verbose_says_the_cause(monkeypatch: pytest.MonkeyPatch, pure: bool) -> 
     status, out, err = run_cli(["--profile", "atv71", "-V", "--hex", OVER, "--hex", REFUSED])
     assert status == 0, err
     frame = out.split("Frame 2:")[1]
-    assert "        Meaning on this device: quantity beyond the card's limit\n" in frame
+    assert "        Exception meaning on this device: quantity beyond the card's limit\n" in frame
     assert "    Note: exception 03 from the VW3 A3 303 to Read Holding Registers: quantity beyond the card's limit\n" in frame
 
 

@@ -26,8 +26,8 @@ def test_p38_read_exceptions_say_the_clause(pure: bool, monkeypatch: pytest.Monk
     assert [(frame["frame"], frame["exception_meaning"]) for frame in frames if frame["kind"] == "exception"] == [
         (10, READ), (12, READ)]
     verbose = run_cli([P38, "-V", "-Y", "kind == \"exception\""])[1]
-    assert [line.strip() for line in verbose.splitlines() if "Meaning on this device" in line] == [
-        f"Meaning on this device: {READ}"] * 2
+    assert [line.strip() for line in verbose.splitlines() if "Exception meaning on this device" in line] == [
+        f"Exception meaning on this device: {READ}"] * 2
     status, out, err = run_cli([P38, "-Y", f'exception_meaning == "{READ}"', "-T", "fields", "-e", "frame"])
     assert (status, out, err) == (0, "10\n12\n", "")
     page = tmp_path / "p38.html"
