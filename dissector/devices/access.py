@@ -14,7 +14,7 @@ from dissector.protocol.spec import SPEC
 
 READ_ONLY = "R"  # the access of a parameter no write changes (README Device profiles; sim/devices.py)
 READ_ONLY_EXCEPTION = SPEC.read_only_exception
-# Such an exception's meaning on the device (Frame.exception_text: `Meaning on this device`), whatever
+# Such an exception's meaning on the device (Frame.exception_text: `Exception meaning on this device`), whatever
 # the code's own meaning; the note names the parameters.
 READ_ONLY_MEANING = text("read_only_meaning", access=READ_ONLY)
 _REGISTER_WRITES = table.register_writes()  # FC6, FC16, FC23: their request's registers are values written
