@@ -9696,23 +9696,34 @@ M.add_text, M.count_text, M.fields_at, M.frame_bytes = add_text, count_text, fie
 M.frame_range, M.summary, M.unseen = frame_range, summary, unseen
 end
 
--- ---- vw3.show: lua/src/show.lua ----
-package.preload["vw3.show"] = function(...)
--- vw3.show: Wireshark: a frame's item and a record's items shown, a record's first dissection, the first pass's end.
+-- ---- vw3.clock: lua/src/clock.lua ----
+package.preload["vw3.clock"] = function(...)
+-- vw3.clock: Wireshark: record times in exact nanoseconds; pinfo's fields read through Wireshark's own getters.
 -- Mirrors no Python module.
--- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.show"]).
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.clock"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local AUTO, ByteArray, DATA, DIAGNOSTICS, EXCEPTION = AUTO, ByteArray, DATA, DIAGNOSTICS, EXCEPTION
-local KIND_NUMBER, MASK_WRITES, NOISE, NO_INTERPRETATION = KIND_NUMBER, MASK_WRITES, NOISE, NO_INTERPRETATION
-local NSTime, PLC_LABELS, REQUEST, START_WORDS, add_pdu = NSTime, PLC_LABELS, REQUEST, START_WORDS, add_pdu
-local add_register, add_said, add_text, bit_at, concat = add_register, add_said, add_text, bit_at, concat
-local count_text, device_of, ended, ex, exception_name = count_text, device_of, ended, ex, exception_name
-local fields_at, finish_safely, floor, format, frame_bytes = fields_at, finish_safely, floor, format, frame_bytes
-local frame_range, function_name, inferred_registers = frame_range, function_name, inferred_registers
-local ipairs, lane, math, pack, pairs, pf, plc_base, proto = ipairs, lane, math, pack, pairs, pf, plc_base, proto
-local register_view, say, summary, tostring, type, unseen = register_view, say, summary, tostring, type, unseen
-local UNMATCHED = say("unmatched", {}) -- (data/modbus.toml [texts])
+local DATA, NSTime, floor, lane, math, rawget, type = DATA, NSTime, floor, lane, math, rawget, type
+
+-- Wireshark's functions behind pinfo's fields, TreeItem.text and tvb:raw(), called directly: wslua reaches a
+-- field through an __index function that looks the name up first (pinfo.port_type: some 1,120 machine
+-- instructions a read, its getter alone some 860; tvb:raw() and tree.text save as much). They are in the
+-- class metatables Wireshark keeps in the registry; where there are none (the test stub's Lua tables), a
+-- field is read as usual.
+local registry = debug and debug.getregistry and debug.getregistry() or {}
+local function getter(class, name)
+  local meta = registry[class]
+  local getters = type(meta) == "table" and rawget(meta, "__getters")
+  local get = type(getters) == "table" and rawget(getters, name)
+  if type(get) == "function" then return get end
+  return function(object) return object[name] end
+end
+local pinfo_number, pinfo_port_type, pinfo_cols = getter("Pinfo", "number"), getter("Pinfo", "port_type"),
+  getter("Pinfo", "cols")
+local pinfo_abs_ts, pinfo_rel_ts, tree_text = getter("Pinfo", "abs_ts"), getter("Pinfo", "rel_ts"),
+  getter("TreeItem", "text")
+local tvb_raw = function(tvb) return tvb:raw() end
+if type(Tvb) == "table" and type(rawget(Tvb, "raw")) == "function" then tvb_raw = rawget(Tvb, "raw") end
 
 -- Record times in integer nanoseconds from a base second of the capture (a double holds them exactly up to
 -- 2^53: 104 days), as vw3-decode's Stamps keep the nanoseconds the file wrote (model.py Stamp): every
@@ -9747,8 +9758,10 @@ end
 
 -- The clock record_ns reads the usual record's time from, in upvalues (fewer look-ups a record): the capture's
 -- serial stream, the reference record's time (abs_ts - rel_ts) and that in ns, set where the clock learns its
--- reference (other_record_ns); the last usual record's number and time (chained_ns: the record before).
+-- reference (other_record_ns); the last usual record's number and time (chained_ns: the record before); the
+-- number of the record whose time rel_ts alone gives (record_ns).
 local usual_capture, usual_reference, usual_reference_ns, usual_number, usual_ns = nil, nil, nil, nil, nil
+local usual_next = nil
 
 -- The record's time from the one before (delta_ts) where that one's is known, else from abs_ts.
 local function chained_ns(c, pinfo, number, abs)
@@ -9758,8 +9771,20 @@ local function chained_ns(c, pinfo, number, abs)
   return coarse_ns(c, abs)
 end
 
+-- A usual record's time: from the reference's, rel_ts exact; the record after it may take rel_ts alone
+-- (record_ns) where the reference's time is after the epoch's first second (the record then is not at
+-- the epoch: its time is the reference's and rel_ts > 0).
+local function usual_record_ns(number, rel)
+  local from = rel * NS + 0.5
+  local ns = usual_reference_ns + (from - from % 1)
+  usual_number, usual_ns = number, ns
+  if usual_reference >= 1 then usual_next = number + 1 end
+  return ns
+end
+
 -- A record's time as record_ns reads it where it is not the usual case below: the first record, a new
--- reference, an RTAC record, one at the epoch, a stand-in. (abs: pinfo.abs_ts, read already)
+-- reference, an RTAC record, one at the epoch, a stand-in (pinfo nil: its time kept). (abs: pinfo.abs_ts,
+-- read already)
 local function other_record_ns(pinfo, number, abs)
   local c = clock
   if c.capture ~= state or c.base == nil then c = capture_clock(abs ~= 0 and abs or nil) end
@@ -9774,6 +9799,7 @@ local function other_record_ns(pinfo, number, abs)
     local reference = rel ~= nil and abs - rel -- (the reference record's time; 0: it has none)
     if reference and math.abs(reference) >= 1 then
       usual_capture, usual_reference, usual_reference_ns = state, reference, ns - exact_ns(c, rel)
+      if reference >= 1 then usual_next = number + 1 end
     end
   end
   times[number] = ns or false
@@ -9782,21 +9808,29 @@ end
 
 -- A record's time as vw3-decode reads it, in ns (nil: none): the RTAC's own timestamp for RTAC serial
 -- records (when the device saw the bytes: lane.rtac_ns), none for records at the epoch (vw3-decode -w
--- writes those for untimed input), the record's time otherwise. Read once a record.
+-- writes those for untimed input), the record's time otherwise. Read once a record; pinfo nil: a stand-in.
 local function record_ns(pinfo, number)
-  local abs = pinfo.abs_ts
-  -- Nearly every record: timed, of the capture whose reference record's time the clock knows, no RTAC
-  -- record; its time from the reference's (other_record_ns: the rest).
+  -- Nearly every record: the one after a usual record (usual_next) of the capture, not an RTAC record, a
+  -- time after the reference record's (rel_ts > 0): its time from the reference's, read from rel_ts alone.
+  -- The reference cannot have changed since the record before: Wireshark's reference is the capture's
+  -- first record or one marked in the GUI, whose rel_ts is 0 (and a record of another protocol between
+  -- the two breaks usual_next).
+  if number == usual_next and pinfo ~= nil and usual_capture == state and rtac_times[number] == nil then
+    local rel = pinfo_rel_ts(pinfo)
+    if rel > 0 then return usual_record_ns(number, rel) end
+  end
+  usual_next = nil
+  if pinfo == nil then return other_record_ns(nil, number, nil) end
+  local abs = pinfo_abs_ts(pinfo)
+  -- Else timed, of the capture whose reference record's time the clock knows, no RTAC record: its time
+  -- from the reference's where abs_ts - rel_ts is that reference (other_record_ns: the rest).
   if usual_capture ~= state or abs == 0 or abs == nil or rtac_times[number] ~= nil then
     return other_record_ns(pinfo, number, abs)
   end
-  local rel = pinfo.rel_ts
+  local rel = pinfo_rel_ts(pinfo)
   local drift = rel ~= nil and abs - rel - usual_reference
   if not (drift and drift < 1e-6 and drift > -1e-6) then return other_record_ns(pinfo, number, abs) end
-  local from = rel * NS + 0.5
-  local ns = usual_reference_ns + (from - from % 1)
-  usual_number, usual_ns = number, ns
-  return ns
+  return usual_record_ns(number, rel)
 end
 
 -- Is the second record timed (not at the epoch but within day 0: pcap.py within_day_zero), the first
@@ -9826,6 +9860,33 @@ function lane.response_time(f)
   return NSTime.new(sign * seconds, sign * (delta * sign - seconds * NS))
 end
 
+-- A record's time kept for a stand-in that decodes it again (dissector.lua decode_again; false: none).
+local function keep_time(number, ns)
+  clock.times[number] = ns or false
+end
+M.keep_time, M.pinfo_cols, M.pinfo_number, M.pinfo_port_type = keep_time, pinfo_cols, pinfo_number, pinfo_port_type
+M.record_ns, M.tree_text, M.tvb_raw = record_ns, tree_text, tvb_raw
+end
+
+-- ---- vw3.show: lua/src/show.lua ----
+package.preload["vw3.show"] = function(...)
+-- vw3.show: Wireshark: a frame's item and a record's items shown, a record's first dissection, the first pass's end.
+-- Mirrors no Python module.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.show"]).
+local M = require("vw3.env")
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local AUTO, ByteArray, DATA, DIAGNOSTICS, EXCEPTION = AUTO, ByteArray, DATA, DIAGNOSTICS, EXCEPTION
+local KIND_NUMBER, MASK_WRITES, NOISE, NO_INTERPRETATION = KIND_NUMBER, MASK_WRITES, NOISE, NO_INTERPRETATION
+local PLC_LABELS, REQUEST, START_WORDS, add_pdu = PLC_LABELS, REQUEST, START_WORDS, add_pdu
+local add_register, add_said, add_text, bit_at, concat = add_register, add_said, add_text, bit_at, concat
+local count_text, device_of, ended, ex, exception_name = count_text, device_of, ended, ex, exception_name
+local fields_at, finish_safely, floor, format, frame_bytes = fields_at, finish_safely, floor, format, frame_bytes
+local frame_range, function_name, inferred_registers = frame_range, function_name, inferred_registers
+local ipairs, keep_time, lane, math, pack, pairs, pf = ipairs, keep_time, lane, math, pack, pairs, pf
+local pinfo_cols, plc_base, proto, record_ns, register_view = pinfo_cols, plc_base, proto, record_ns, register_view
+local say, summary, tostring, tree_text, tvb_raw, type = say, summary, tostring, tree_text, tvb_raw, type
+local unseen = unseen
+local UNMATCHED = say("unmatched", {}) -- (data/modbus.toml [texts])
 -- The window's start or quantity (what) on the bytes its lifting rule read it from; generated and on no
 -- bytes where the frame does not hold it (a read's answer: its request's; FC5's and FC6's quantity of one).
 local function add_window(t, tvb, f, field, what, value)
@@ -10042,7 +10103,7 @@ end
 -- (TreeItem.text, .visible and .len, which unseen.add reads, are there from Wireshark 4.0 on.)
 local function tree_mode(tree)
   if type(tree) ~= "userdata" then return true end
-  if tree.text == nil then return false end
+  if tree_text(tree) == nil then return false end
   if tree.visible == false then return "unseen" end
   return true
 end
@@ -10125,7 +10186,7 @@ end
 -- number (see pack.settle). whole: the record is one frame just taken by dissect_record's fast lane (not
 -- packed yet).
 local function show_record(st, record, tvb, pinfo, tree, n, whole)
-  local cols = pinfo.cols
+  local cols = pinfo_cols(pinfo)
   cols.protocol = "VW3"
   local full = tree_mode(tree)
   if whole and not full and config.errors[1] == nil then
@@ -10254,8 +10315,9 @@ end
 -- Each record (serial record, UDP datagram) is a chunk of its stream.
 -- The record's first dissection: nil for an empty record, else the record and its length, and the Info
 -- text of a record the quick lanes took (its one frame has nothing else to say where no tree is wanted).
-local function dissect_now(st, tvb, pinfo, number)
-  local bytes = tvb:raw()
+-- (bytes: the record's, read from the tvb where not given; pinfo nil: a stand-in, dissector.lua decode_again)
+local function dissect_now(st, tvb, pinfo, number, bytes)
+  bytes = bytes or tvb_raw(tvb)
   local n = #bytes
   if n == 0 then return nil end
   local time = record_ns(pinfo, number)
@@ -10275,12 +10337,12 @@ local function dissect_now(st, tvb, pinfo, number)
     end
     again.bytes[number] = bytes
   end
-  if st.sample then clock.times[number] = time or false end -- (kept for a stand-in: dissector.lua decode_again)
+  if st.sample then keep_time(number, time) end -- (kept for a stand-in: dissector.lua decode_again)
   local record, taken, info = lane.decode(st, bytes, n, time, number)
   if again ~= nil and info == nil then again.times[number] = time or false end
   return record, taken, info
 end
-M.dissect_now, M.finish_all, M.record_ns, M.show_record = dissect_now, finish_all, record_ns, show_record
+M.dissect_now, M.finish_all, M.show_record = dissect_now, finish_all, show_record
 end
 
 -- ---- vw3.dissector: lua/src/dissector.lua ----
@@ -10294,9 +10356,10 @@ local DATA, DissectorTable, MODE_REACH, Proto, READS = DATA, DissectorTable, MOD
 local REQUEST, RESPONSE, add_register, add_text = REQUEST, RESPONSE, add_register, add_text
 local annotate_list, apply_prefs, device_now, dissect_now = annotate_list, apply_prefs, device_now, dissect_now
 local ended, ex, finish_all, ipairs, lane, new_state, os = ended, ex, finish_all, ipairs, lane, new_state, os
-local pack, package, pair_scan, pairs, pcall, pf, proto = pack, package, pair_scan, pairs, pcall, pf, proto
+local pack, package, pair_scan, pairs, pcall, pf = pack, package, pair_scan, pairs, pcall, pf
+local pinfo_cols, pinfo_number, pinfo_port_type, proto = pinfo_cols, pinfo_number, pinfo_port_type, proto
 local record_ns, sample_modes, show_record, stream_state = record_ns, sample_modes, show_record, stream_state
-local tostring, type, wtap = tostring, type, wtap
+local tostring, tree_text, tvb_raw, type, wtap = tostring, tree_text, tvb_raw, type, wtap
 
 -- A stream's mode, where no preference sets it, is told from its first bytes as vw3-decode tells it
 -- (protocol/ascii.py sample_mode: MODE_SAMPLE bytes, up to MODE_REACH after line noise), and those may
@@ -10315,9 +10378,8 @@ local function decode_again(st, kept, mode, except)
   for index = 1, #kept do
     local number, bytes_kept = kept[index][1], kept[index][2]
     if number ~= except then
-      -- (dissect_now reads the bytes through a stand-in for the tvb, gone since)
-      local tvb_kept = { raw = function() return bytes_kept end }
-      local ok, result = pcall(dissect_now, fresh, tvb_kept, {}, number)
+      -- (no pinfo: the record's is gone; its time is the one kept)
+      local ok, result = pcall(dissect_now, fresh, nil, nil, number, bytes_kept)
       if not ok then result = { length = #bytes_kept, error = tostring(result) } end
       fresh.records[number] = result
       if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
@@ -10355,7 +10417,7 @@ local function sample_and_dissect(st, tvb, pinfo, number)
     sample = { text = "", scan = pair_scan() }
     st.sample = sample
   end
-  local bytes = tvb:raw()
+  local bytes = tvb_raw(tvb)
   if bytes == "" then return nil end -- (as dissect_now: nothing for an empty record)
   sample.text = sample.text .. bytes:sub(1, MODE_REACH - #sample.text)
   -- (ended: what vw3-decode would choose were the capture to end here; one look at the bytes gives both, and
@@ -10372,7 +10434,7 @@ local function sample_and_dissect(st, tvb, pinfo, number)
   elseif mode ~= st.mode then
     decode_again(st, sample, mode, number)
   end
-  return dissect_now(st, tvb, pinfo, number)
+  return dissect_now(st, tvb, pinfo, number, bytes)
 end
 
 -- Are the trees Wireshark's (userdata), not the test stub's (Lua tables)? The same for every record: asked
@@ -10380,7 +10442,7 @@ end
 local wireshark_trees = nil
 
 local function dissect_records(st, tvb, pinfo, tree)
-  local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
+  local number = pinfo_number(pinfo) -- (each field of pinfo is a call into Wireshark: read once)
   local record = st.records[number]
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
@@ -10403,10 +10465,10 @@ local function dissect_records(st, tvb, pinfo, tree)
     st.records[number] = record
     -- (not tree_mode(tree), written out: no tree)
     if wireshark_trees == nil then wireshark_trees = type(tree) == "userdata" end
-    if info ~= nil and wireshark_trees and tree.text == nil and config.errors[1] == nil then
+    if info ~= nil and wireshark_trees and tree_text(tree) == nil and config.errors[1] == nil then
       -- A record of the quick lanes: its one frame, a request or its answer (kept already), has nothing to
       -- say but its Info text where no tree is wanted.
-      local cols = pinfo.cols
+      local cols = pinfo_cols(pinfo)
       cols.protocol = "VW3"
       cols.info = info
     else
@@ -10474,7 +10536,7 @@ local function serial_state(pinfo)
 end
 
 function proto.dissector(tvb, pinfo, tree)
-  local port_type = pinfo.port_type
+  local port_type = pinfo_port_type(pinfo)
   if port_type == PT_TCP then return dissect_records(conversation_state("tcp ", pinfo), tvb, pinfo, tree) end
   if port_type == PT_UDP then return dissect_records(conversation_state("udp ", pinfo), tvb, pinfo, tree) end
   return dissect_records(INTERFACE and serial_state(pinfo) or state, tvb, pinfo, tree)
@@ -10539,7 +10601,7 @@ end
 -- tests/conformance runs them), then the Wireshark glue.
 local PURE = { "crc", "layouts", "stream", "rtu", "ascii", "feed", "decode", "pairing", "maps", "device", "story",
   "explain", "selection", "annotator", "pack", "records" }
-local WIRESHARK = { "fields", "tree", "show", "dissector" }
+local WIRESHARK = { "fields", "tree", "clock", "show", "dissector" }
 
 -- (a second load of this file, as the tests do, starts from fresh modules)
 for name in pairs(package.loaded) do

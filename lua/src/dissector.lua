@@ -21,9 +21,8 @@ local function decode_again(st, kept, mode, except)
   for index = 1, #kept do
     local number, bytes_kept = kept[index][1], kept[index][2]
     if number ~= except then
-      -- (dissect_now reads the bytes through a stand-in for the tvb, gone since)
-      local tvb_kept = { raw = function() return bytes_kept end }
-      local ok, result = pcall(dissect_now, fresh, tvb_kept, {}, number)
+      -- (no pinfo: the record's is gone; its time is the one kept)
+      local ok, result = pcall(dissect_now, fresh, nil, nil, number, bytes_kept)
       if not ok then result = { length = #bytes_kept, error = tostring(result) } end
       fresh.records[number] = result
       if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
@@ -61,7 +60,7 @@ local function sample_and_dissect(st, tvb, pinfo, number)
     sample = { text = "", scan = pair_scan() }
     st.sample = sample
   end
-  local bytes = tvb:raw()
+  local bytes = tvb_raw(tvb)
   if bytes == "" then return nil end -- (as dissect_now: nothing for an empty record)
   sample.text = sample.text .. bytes:sub(1, MODE_REACH - #sample.text)
   -- (ended: what vw3-decode would choose were the capture to end here; one look at the bytes gives both, and
@@ -78,7 +77,7 @@ local function sample_and_dissect(st, tvb, pinfo, number)
   elseif mode ~= st.mode then
     decode_again(st, sample, mode, number)
   end
-  return dissect_now(st, tvb, pinfo, number)
+  return dissect_now(st, tvb, pinfo, number, bytes)
 end
 
 -- Are the trees Wireshark's (userdata), not the test stub's (Lua tables)? The same for every record: asked
@@ -86,7 +85,7 @@ end
 local wireshark_trees = nil
 
 local function dissect_records(st, tvb, pinfo, tree)
-  local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
+  local number = pinfo_number(pinfo) -- (each field of pinfo is a call into Wireshark: read once)
   local record = st.records[number]
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
@@ -109,10 +108,10 @@ local function dissect_records(st, tvb, pinfo, tree)
     st.records[number] = record
     -- (not tree_mode(tree), written out: no tree)
     if wireshark_trees == nil then wireshark_trees = type(tree) == "userdata" end
-    if info ~= nil and wireshark_trees and tree.text == nil and config.errors[1] == nil then
+    if info ~= nil and wireshark_trees and tree_text(tree) == nil and config.errors[1] == nil then
       -- A record of the quick lanes: its one frame, a request or its answer (kept already), has nothing to
       -- say but its Info text where no tree is wanted.
-      local cols = pinfo.cols
+      local cols = pinfo_cols(pinfo)
       cols.protocol = "VW3"
       cols.info = info
     else
@@ -180,7 +179,7 @@ local function serial_state(pinfo)
 end
 
 function proto.dissector(tvb, pinfo, tree)
-  local port_type = pinfo.port_type
+  local port_type = pinfo_port_type(pinfo)
   if port_type == PT_TCP then return dissect_records(conversation_state("tcp ", pinfo), tvb, pinfo, tree) end
   if port_type == PT_UDP then return dissect_records(conversation_state("udp ", pinfo), tvb, pinfo, tree) end
   return dissect_records(INTERFACE and serial_state(pinfo) or state, tvb, pinfo, tree)

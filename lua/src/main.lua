@@ -19,7 +19,7 @@
 -- tests/conformance runs them), then the Wireshark glue.
 local PURE = { "crc", "layouts", "stream", "rtu", "ascii", "feed", "decode", "pairing", "maps", "device", "story",
   "explain", "selection", "annotator", "pack", "records" }
-local WIRESHARK = { "fields", "tree", "show", "dissector" }
+local WIRESHARK = { "fields", "tree", "clock", "show", "dissector" }
 
 -- (a second load of this file, as the tests do, starts from fresh modules)
 for name in pairs(package.loaded) do

@@ -75,10 +75,10 @@ def test_pure_modules_load_without_wireshark(lua: str) -> None:
     assert result.stdout.split() == sorted(PURE + ["env"])  # no Wireshark module was loaded
 
 
-# The modules with no Python counterpart: Wireshark's side (the protocol and its fields, the dissectors,
+# The modules with no Python counterpart: Wireshark's side (the protocol and its fields, the dissectors, record times,
 # the showing of records and trees is render/ in Python, tree.lua says so), the pure part's entry points,
 # and what a record keeps for Wireshark's later dissections.
-UNMIRRORED = {"api", "dissector", "fields", "pack", "show"}
+UNMIRRORED = {"api", "clock", "dissector", "fields", "pack", "show"}
 
 
 def test_modules_are_small_stages_that_name_their_python_module() -> None:
