@@ -8,40 +8,56 @@ local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, F
 -- Does a layout at i check out and end where its record does (a code without a length rule: its CRC checks at
 -- the record's end)? The source says a frame ends there: a glitch-byte reading of b[i] before a longer frame
 -- crossing that end is not waited for, which in a single pass (tshark without -2) held every later record.
+-- Second, whether the answer stays with more bytes (settled): nothing it weighed reached the stream's end n
+-- (a length rule that needs more bytes, a frame ending at n or past it, a scan with no record end after i,
+-- an echo awaited that the bytes have not all repeated yet); the bytes before n and record ends never change.
 local function ends_record(s, b, i, n)
-  local list = interpretations(s, b[i], b[i + 1], b, i, n)
+  local slave, code = b[i], b[i + 1]
+  local list = interpretations(s, slave, code, b, i, n)
+  local echo = s.echo
+  local settled = not (echo ~= nil and s.expect == slave * 256 + code and i + 1 + #echo >= n)
   for index = 1, #list do
-    local length, is_scan, _, fallback = list[index][2](b, i, n)
+    local length, is_scan, walk, fallback = list[index][2](b, i, n)
+    -- (a rule's length is its bytes' alone but for NEED and the FC43 object walk's: the walk's length, NEED or
+    -- at n or past it, or a fallback, given where the walk ends at n, say that more bytes may change it)
+    if length == NEED or walk == NEED or walk ~= nil and i + walk >= n or fallback ~= nil and i + length >= n then
+      settled = false
+    end
     if fallback ~= nil and not crc_ok_at(b, i, length) then is_scan, length = true, fallback end -- (its CRC scan)
     if is_scan then -- (rtu.py _ends_record: the record's length, from the scan's minimum on)
       local stop = first_after(s, s.boundaries, i, n) -- (the first record end after i)
+      if stop == nil then settled = false end
       length = stop ~= nil and stop - i >= length and stop - i or 0
     end
-    if length >= MIN_ADU and length <= MAX_ADU and i + length <= n and boundary_at(s, i + length)
-        and crc_ok_at(b, i, length) then
-      return true
+    if length >= MIN_ADU and length <= MAX_ADU then
+      if i + length >= n then settled = false end
+      if i + length <= n and boundary_at(s, i + length) and crc_ok_at(b, i, length) then return true, settled end
     end
   end
-  return false
+  return false, settled
 end
 
 -- A record end's answer to ends_record, with the state it was given in (the stream's end, the answer awaited and
--- its echo: stream.py _ends_memo): each CRC scan weighs the record ends ahead of it, asked again for every start.
+-- its echo: stream.py _ends_memo): each CRC scan weighs the record ends ahead of it, asked again for every start;
+-- a settled answer stays for a longer stream (one-byte records: each record asked again those of every record
+-- ahead, some 87 of them).
 local ends_memo, ends_known = {}, 0
 
 -- Where a CRC scan from i stops (rtu.py _framed_reach): the first record after i that is a frame of its own, else
 -- n. A scan across it read noise and that frame as one frame, and waited for bytes past it in one pass.
 local function framed_reach(s, b, i, n)
   local base, ends = s.base, s.boundaries
-  local stop = base + math.min(n - MIN_ADU + 1, i + MAX_ADU)
+  local stop, last = base + math.min(n - MIN_ADU + 1, i + MAX_ADU), base + n
   if ends_known > 4 * MAX_ADU then ends_memo, ends_known = {}, 0 end
   for index = first_above(ends, base + i, 1), #ends do -- (ascending: the first that is a frame of its own)
     local offset = ends[index]
     if offset >= stop then break end
     local known = ends_memo[offset]
-    if known == nil or known[1] ~= s or known[2] ~= base + n or known[3] ~= s.expect or known[4] ~= s.echo then
-      known = { s, base + n, s.expect, s.echo, ends_record(s, b, offset - base, n) }
-      if ends_memo[offset] == nil then ends_known = ends_known + 1 end
+    if known == nil or known[1] ~= s or known[3] ~= s.expect or known[4] ~= s.echo
+        or known[2] ~= last and not (known[6] and known[2] < last) then
+      local answer, settled = ends_record(s, b, offset - base, n)
+      if known == nil then ends_known = ends_known + 1 end
+      known = { s, last, s.expect, s.echo, answer, settled }
       ends_memo[offset] = known
     end
     if known[5] then return offset - base end
