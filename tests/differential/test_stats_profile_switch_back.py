@@ -6,17 +6,12 @@ read while the slave was an ATV71, into holding registers, and nothing moved it 
 only towards a one-table device): `247  3201..3203 (3)`. Found by bench/fastsummary_fuzz.py --stats, seed 120."""
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
-import time
-from pathlib import Path
-
 import pytest
+
+from helpers import fed_piece_by_piece
 
 from dissector.accel import fastsummary
 
-ROOT = Path(__file__).resolve().parents[2]
 # FC4 3201..3203, FC6 8501 := 15 (echoed), FC2 (which the VW3 A3 303 does not support), slave 247
 FRAMES = [bytes.fromhex(f) for f in (
     "f7040c810003f7e5", "f70406063700000000ba95", "f7062135000fc76a", "f7062135000fc76a",
@@ -27,21 +22,7 @@ WHY = "  247  generic  function 2 answered in frame #6, which the VW3 A3 303 doe
 
 
 def stats(pure: bool, pieces: list[bytes]) -> list[str]:
-    env = {key: value for key, value in os.environ.items() if key != "VW3_PURE_PYTHON"}
-    env["PYTHONPATH"] = str(ROOT)
-    if pure:
-        env["VW3_PURE_PYTHON"] = "1"
-    process = subprocess.Popen([sys.executable, "-m", "dissector", "--stats", "-"], cwd=ROOT, env=env,
-                               stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    assert process.stdin is not None
-    for index, piece in enumerate(pieces):
-        if index:
-            time.sleep(0.3)  # (a piece a read, so the annotator is no further than the frames counted)
-        process.stdin.write(piece)
-        process.stdin.flush()
-    out, err = process.communicate(timeout=60)
-    assert process.returncode == 0, err
-    return out.decode().splitlines()
+    return fed_piece_by_piece(["--stats", "-"], pieces, pure).splitlines()
 
 
 @pytest.mark.skipif(fastsummary is None, reason="the compiled engine is not built")

@@ -7,13 +7,11 @@ and part it when the choice is taken back. Before, the engine showed one row `12
 standard input (and the Python stages fed frame by frame too). Found by bench/fastsummary_fuzz.py --stats, seed 256."""
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
-import time
 from pathlib import Path
 
 import pytest
+
+from helpers import fed_piece_by_piece
 
 from dissector.accel import fastsummary
 from dissector.devices.profiles import ONE_TABLE, TABLES
@@ -21,7 +19,6 @@ from dissector.render.stats_store import (
     CONFIRM, HOLDING_REGISTERS, INPUT_REGISTERS, MAX_KEYS, READ, WRITE, ParameterTable, parameter_rows, table_homes,
 )
 
-ROOT = Path(__file__).resolve().parents[2]
 # FC4 8502 (7), FC6 8502 := 32 (echoed), FC5 (which the VW3 A3 303 does not support): slave 12
 FRAMES = [bytes.fromhex(f) for f in (
     "0c0421360001dae5", "0c04020007d533", "0c0621360020633d", "0c0621360020633d", "0c0520d0ff00871e",
@@ -38,21 +35,7 @@ PARAMETERS = [
 
 
 def stats(pure: bool, pieces: list[bytes] | None, path: Path | None = None) -> list[str]:
-    env = {key: value for key, value in os.environ.items() if key != "VW3_PURE_PYTHON"}
-    env["PYTHONPATH"] = str(ROOT)
-    if pure:
-        env["VW3_PURE_PYTHON"] = "1"
-    process = subprocess.Popen([sys.executable, "-m", "dissector", "--stats", str(path or "-")], cwd=ROOT, env=env,
-                               stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    assert process.stdin is not None
-    for index, piece in enumerate(pieces or []):
-        if index:
-            time.sleep(0.3)  # (a piece a read, so the annotator is no further than the frames counted)
-        process.stdin.write(piece)
-        process.stdin.flush()
-    out, err = process.communicate(timeout=60)
-    assert process.returncode == 0, err
-    lines = out.decode().splitlines()
+    lines = fed_piece_by_piece(["--stats", str(path or "-")], pieces or [], pure).splitlines()
     start = lines.index("Parameters")
     return lines[start : start + len(PARAMETERS)]
 

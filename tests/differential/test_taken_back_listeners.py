@@ -9,18 +9,15 @@ dissector/accel/_report.h, which forgets a slave's trends when its device change
 from __future__ import annotations
 
 import json
-import os
 import re
-import subprocess
-import sys
-import time
 from pathlib import Path
 
 import pytest
 
+from helpers import fed_piece_by_piece
+
 from dissector.accel import fastsummary
 
-ROOT = Path(__file__).resolve().parents[2]
 # FC4 3201..3203, FC6 8501 := 15 (echoed), FC2 (which the VW3 A3 303 does not support), FC4 3201..3203 again
 FRAMES = [bytes.fromhex(f) for f in (
     "f7040c810003f7e5", "f70406063700000000ba95", "f7062135000fc76a", "f7062135000fc76a",
@@ -30,25 +27,11 @@ WAYS = ["file", "at-once", "frame-by-frame"]
 
 
 def vw3_decode(args: list[str], pure: bool, way: str, tmp_path: Path) -> str:
-    env = {key: value for key, value in os.environ.items() if key != "VW3_PURE_PYTHON"}
-    env["PYTHONPATH"] = str(ROOT)
-    if pure:
-        env["VW3_PURE_PYTHON"] = "1"
     source = "-"
     if way == "file":
         source = str(tmp_path / "bus.bin")
         Path(source).write_bytes(b"".join(FRAMES))
-    process = subprocess.Popen([sys.executable, "-m", "dissector", *args, source], cwd=ROOT, env=env,
-                               stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    assert process.stdin is not None
-    for index, piece in enumerate({"file": [], "at-once": [b"".join(FRAMES)]}.get(way, FRAMES)):
-        if index:
-            time.sleep(0.3)  # (a piece a read, so the annotator is no further than the frames counted)
-        process.stdin.write(piece)
-        process.stdin.flush()
-    out, err = process.communicate(timeout=60)
-    assert process.returncode == 0, err
-    return out.decode()
+    return fed_piece_by_piece([*args, source], {"file": [], "at-once": [b"".join(FRAMES)]}.get(way, FRAMES), pure)
 
 
 @pytest.mark.skipif(fastsummary is None, reason="the compiled engine is not built")

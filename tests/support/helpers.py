@@ -2,7 +2,11 @@
 from __future__ import annotations
 
 import io
+import os
 import struct
+import subprocess
+import sys
+import time
 from pathlib import Path
 
 from dissector.app.cli import Environment, run
@@ -45,6 +49,28 @@ def run_cli(argv: list[str], stdin: bytes = b"", tty: bool = False) -> tuple[int
     env = Environment(io.BytesIO(stdin), out, err, stdout_isatty=tty, stderr_isatty=False)
     status = run(argv, env)
     return status, out.getvalue(), err.getvalue()
+
+
+def fed_piece_by_piece(args: list[str], pieces: list[bytes], pure: bool) -> str:
+    """vw3-decode ARGS (engine, or the Python stages: `pure`) in a process whose standard input gets `pieces`
+    a read each, 0.3 s apart, so the decode is no further than the frames fed (a taken-back choice is seen
+    as a live line sees it); its standard output."""
+    root = Path(__file__).resolve().parents[2]
+    env = {key: value for key, value in os.environ.items() if key != "VW3_PURE_PYTHON"}
+    env["PYTHONPATH"] = str(root)
+    if pure:
+        env["VW3_PURE_PYTHON"] = "1"
+    process = subprocess.Popen([sys.executable, "-m", "dissector", *args], cwd=root, env=env,
+                               stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert process.stdin is not None
+    for index, piece in enumerate(pieces):
+        if index:
+            time.sleep(0.3)  # (a piece a read, so the annotator is no further than the frames counted)
+        process.stdin.write(piece)
+        process.stdin.flush()
+    out, err = process.communicate(timeout=60)
+    assert process.returncode == 0, err
+    return out.decode()
 
 
 def write_9600_tap(path: object, t0: float = 1767225600.0) -> None:
