@@ -324,22 +324,26 @@ def choose_over_all(args: DecodeOptions, env: Any, annotate: Any) -> bool:
     if getattr(annotate, "selector", None) is None or not several_captures(args) \
             or not all(map(rereadable, args.files)):  # (before any is opened: standard input is read once)
         return False
-    listed = list(inputs(args, env))
+    if args.format in (None, "pcapng") and any(len(packet_interfaces(path)) > 1 for path in args.files):
+        return False
+    selector = annotate.selector
+    listed = inputs(args, env)
     try:
-        if any(bus is not None for *_rest, bus, _again in listed):
-            return False
-        selector = annotate.selector
         for (title, chunks, mode, _warnings, _recorded, _timed, fix, (path, source_format), bus,
              again) in listed:
             selector.source = title  # (the evidence names the file it is in, as the decode cites it)
-            choose_profiles_first(annotate, args, chunks, mode, path, again,
-                                  input_line(path, source_format, args, bus).baud, fix)
-        return True
+            try:
+                choose_profiles_first(annotate, args, chunks, mode, path, again,
+                                      input_line(path, source_format, args, bus).baud, fix)
+            finally:
+                close = getattr(chunks, "close", None)
+                if close is not None:
+                    close()
+    except SourceError:  # (the decode refuses it where it reaches it: the inputs before it are decoded)
+        annotate.freeze()
     finally:
-        for entry in listed:
-            close = getattr(entry[1], "close", None)
-            if close is not None:
-                close()
+        listed.close()
+    return True
 
 
 def choose_profiles_first(annotate: Any, args: DecodeOptions, chunks: Iterable[Chunk], mode: str,
