@@ -404,7 +404,8 @@ def _decode_inputs(
                 # frame), its own profile choices (auto) and counts (--stats, --watch).
                 annotate = devices.setdefault(key, annotate if not devices else copy.deepcopy(pristine))
             sinks.new_input(key, title, annotate, mode, line)
-            sinks.output.new_input(title if sinks.show else None)  # no ==> header over nothing
+            # no ==> header over nothing; with -Y none over a file with no match
+            sinks.output.new_input(title if sinks.show else None, held=sinks.predicate is not None)
             sinks.restart_times()
             if sinks.pcap is not None:
                 keep_interface(sinks, args, env, path, source_format, line, bus)

@@ -96,6 +96,7 @@ class Output:
                 width=UNWRAPPED,
             )
         self._buffer: list[str] = []
+        self._held: str | None = None  # a title waiting for its input's first item shown (new_input)
         self.fields = None
         if options.fields is not None:
             from dissector.render.fields import FieldsWriter
@@ -123,12 +124,22 @@ class Output:
         assert self.console is not None
         self.console.print(renderable, width=shutil.get_terminal_size().columns)
 
-    def new_input(self, title: str | None = None) -> None:
-        """Times restart at each input; several inputs are announced as tail(1) does."""
+    def new_input(self, title: str | None = None, held: bool = False) -> None:
+        """Times restart at each input; several inputs are announced as tail(1) does. `held` (-Y): the
+        title waits for the input's first item shown, as grep -H names only the files that match: a
+        title over nothing would read as a match (head's title over an empty file is kept without -Y)."""
         self.clock.reset()
+        self._held = None
         if title is None:
             return
         title = printable(title)  # a file name is data: `mk[/x].bin`, an ESC in a name
+        if held:
+            self._held = title
+            return
+        self._announce(title)
+
+    def _announce(self, title: str) -> None:
+        self._held = None
         if self.console is not None:
             from rich.text import Text
 
@@ -150,6 +161,8 @@ class Output:
 
         The clock must have observed them (and every item the filter dropped) before.
         """
+        if self._held is not None and items:
+            self._announce(self._held)
         options = self.options
         out = self._buffer
         clock = self.clock
@@ -275,6 +288,8 @@ class Output:
 
     def write_encoded(self, lines: bytes) -> None:
         """Summary lines made elsewhere (the compiled path), UTF-8, each ending in a newline."""
+        if self._held is not None and lines:
+            self._announce(self._held)
         binary = getattr(self.stream, "buffer", None)
         encoding = (getattr(self.stream, "encoding", None) or "").lower().replace("-", "")
         if binary is None or encoding != "utf8":
