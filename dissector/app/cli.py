@@ -392,7 +392,7 @@ def _decode_inputs(
     chosen_over_all = choose_over_all(args, env, annotate)
     try:
         for (title, chunks, mode, take_warnings, recorded, timed, fix, (path, source_format),
-             bus, again) in inputs(args, env):
+             bus, again, units) in inputs(args, env):
             if sinks.done:
                 break
             line = input_line(path, source_format, args, bus)
@@ -406,6 +406,7 @@ def _decode_inputs(
             sinks.new_input(key, title, annotate, mode, line)
             # no ==> header over nothing; with -Y none over a file with no match
             sinks.output.new_input(title if sinks.show else None, held=sinks.predicate is not None)
+            sinks.clock.units = units  # tshark's precision: 9 decimals of a nanosecond pcap
             sinks.restart_times()
             if sinks.pcap is not None:
                 keep_interface(sinks, args, env, path, source_format, line, bus)

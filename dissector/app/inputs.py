@@ -29,16 +29,17 @@ from dissector.sources.trail import Piece, RecordTrail, item_comments, observed
 TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
 
 Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], Callable[[], Any], bool, Fix,
-              tuple[str | None, str | None], "PacketInterface | None", "Callable[[], Any] | None"]
+              tuple[str | None, str | None], "PacketInterface | None", "Callable[[], Any] | None", int | None]
 
 
 def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
-    """(title, chunks, mode, take_warnings, recorded, timed, fix, (path, format), interface, again) per
+    """(title, chunks, mode, take_warnings, recorded, timed, fix, (path, format), interface, again, units) per
     input: the files of one ring buffer are one input (app/rings.py), read as one stream, `path` its
     first; a pcapng file with packets from several interfaces is one input per interface, each its own bus
     (sources/interfaces.py), titled `file: interface name`; `recorded`: once read, when its last record was
     made (Source.recorded_until: the other interfaces' records too); `again`: the same input opened anew,
-    for profile `auto` to read it twice (None: standard input, a FIFO, --hex: not read twice)."""
+    for profile `auto` to read it twice (None: standard input, a FIFO, --hex: not read twice); `units`: its
+    records' time units a second, whose precision the time column shows (None: not a pcap or pcapng)."""
     from dissector.app.preselect import rereadable
 
     captures = group_files(args.files)
@@ -48,7 +49,7 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
         fix = typed.fix if typed.repairs else None
         # (timed: its arguments are records, whose ends the compiled timed path keeps; the raw path drops them)
         yield (("--hex" if several else None), typed.chunks, typed.mode, list, lambda: None, True, fix, (None, None),
-               None, None)
+               None, None, None)
     for shown_name, files in captures:
         path = files[0]
         buses = packet_interfaces(path) if path != "-" and args.format in (None, "pcapng") else []
@@ -66,9 +67,25 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
             title = shown_name if bus is None else f"{shown_name}: {bus.label()}"
             again = (lambda files=files, bus=bus: _open_input(files, bus, args, None)) \
                 if all(map(rereadable, files)) else None
+            units = time_units(source, buses, bus, path, args.format)
             yield ((title if several or bus is not None else None), chunks, source.mode, source.take_warnings,
                    lambda source=source: source.recorded_until, timed, None, (path, source.format), bus,
-                   again)
+                   again, units)
+
+
+def time_units(source: Any, buses: list[PacketInterface], bus: PacketInterface | None, path: str,
+               fmt: str | None) -> int | None:
+    """An input's time units a second, whose precision its time column shows (render/timefmt.py): a pcap's,
+    a pcapng interface's (a file's are known before its first packet: --mode reads none at its opening),
+    nanoseconds for a timed text whose first lines have some (as its -w copy has them: write_units);
+    None for others (microseconds, rounded)."""
+    if buses:
+        return (bus or buses[0]).interface.units
+    if source.format in ("hexdump", "traffic"):
+        from dissector.app.preselect import rereadable
+
+        return NANOS if path != "-" and rereadable(path) and _text_nanoseconds(path, fmt) else None
+    return source.time_units
 
 
 def several_captures(args: DecodeOptions) -> bool:
@@ -330,7 +347,7 @@ def choose_over_all(args: DecodeOptions, env: Any, annotate: Any) -> bool:
     listed = inputs(args, env)
     try:
         for (title, chunks, mode, _warnings, _recorded, _timed, fix, (path, source_format), bus,
-             again) in listed:
+             again, _units) in listed:
             selector.source = title  # (the evidence names the file it is in, as the decode cites it)
             try:
                 choose_profiles_first(annotate, args, chunks, mode, path, again,

@@ -88,6 +88,7 @@ class RingSource:
         self._open = open_file
         self.current = open_file(files[0])
         self.format, self.mode, self.name = self.current.format, self.current.mode, self.current.name
+        self._units = self.current.time_units
         self.streaming = False
         self._warnings: list[str] = []
 
@@ -95,6 +96,11 @@ class RingSource:
     def recorded_until(self) -> Any:
         """The last file's (read last): when the capture ends."""
         return self.current.recorded_until
+
+    @property
+    def time_units(self) -> Any:
+        """The first file's (dumpcap writes every file of a ring alike)."""
+        return self._units
 
     def take_warnings(self) -> list[str]:
         taken, self._warnings = self._warnings + self.current.take_warnings(), []

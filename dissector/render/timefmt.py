@@ -9,7 +9,7 @@ from __future__ import annotations
 import time as _time
 from dataclasses import dataclass, field
 
-from dissector.model import Item
+from dissector.model import Item, Stamp
 
 # -t value -> what tshark calls it (for --help and error messages)
 TIME_FORMATS: dict[str, str] = {
@@ -32,29 +32,62 @@ TIME_FIELDS = ("time_relative", "time_delta", "time_delta_displayed")
 NOT_REPRESENTABLE = "Not representable"
 
 
-def whole_micros(seconds: float) -> tuple[int, int]:
-    """(whole seconds, microseconds) of a time: from a Stamp's integer nanoseconds where it has them (a
-    float of year 1 is -6.2e10 s, which keeps 8 us at best: .005000 showed .004997), else the float's."""
+# tshark's time precisions (wiretap's WTAP_TSPREC: s, ds, cs, ms, us, ns): the decimals of its time column.
+PRECISIONS = (0, 1, 2, 3, 6, 9)
+MICRO_DIGITS = 6  # a pcap's, a text log's, a live line's: microseconds
+NS = 1_000_000_000
+
+
+def column_digits(units: int | None) -> int:
+    """The decimals tshark's time column shows of a file whose times are in 1/`units` s (a pcap's
+    microseconds or nanoseconds, a pcapng interface's if_tsresol 10^-n or 2^-n): the finest of PRECISIONS
+    they hold (tshark -r, 4.0: 9 for nanoseconds, 3 for if_tsresol 2^-10, 6 for 10^-7); 6 when unknown."""
+    if not units:
+        return MICRO_DIGITS
+    return max(digits for digits in PRECISIONS if 10**digits <= units)
+
+
+def whole_fraction(seconds: float, digits: int = MICRO_DIGITS, cut: bool = False) -> tuple[int, int]:
+    """(whole seconds, the fraction in 1/10^digits s) of a time: from a Stamp's integer nanoseconds where
+    it has them (a float of year 1 is -6.2e10 s, which keeps 8 us at best: .005000 showed .004997; near
+    1.7e9 s one keeps 0.2 us), else the float's. Rounded, or `cut` as tshark cuts a capture's times to
+    its precision (.142578125 s shows .142 in ms)."""
+    scale = 10**digits
     ns = getattr(seconds, "ns", None)
     if ns is not None:
-        whole, rest = divmod(ns, 1_000_000_000)
-        micros = round(rest / 1000)
+        whole, rest = divmod(ns, NS)
+        fraction = rest * scale // NS if cut else round(rest * scale / NS)
     else:
         whole = int(seconds // 1)
-        micros = round((seconds - whole) * 1_000_000)
-    if micros == 1_000_000:  # 0.9999996 rounds up into the next second
-        whole, micros = whole + 1, 0
-    return whole, micros
+        fraction = round((seconds - whole) * scale)
+    if fraction == scale:  # 0.9999996 rounds up into the next second
+        whole, fraction = whole + 1, 0
+    return whole, fraction
 
 
-def _clock_text(seconds: float, utc: bool, date: bool) -> str:
-    whole, micros = whole_micros(seconds)
+def whole_micros(seconds: float) -> tuple[int, int]:
+    """(whole seconds, microseconds) of a time (whole_fraction)."""
+    return whole_fraction(seconds, MICRO_DIGITS)
+
+
+def _decimals(fraction: int, digits: int) -> str:
+    return f".{fraction:0{digits}d}" if digits else ""
+
+
+def _clock_text(seconds: float, utc: bool, date: bool, digits: int = MICRO_DIGITS, cut: bool = False) -> str:
+    whole, fraction = whole_fraction(seconds, digits, cut)
     try:
         parts = _time.gmtime(whole) if utc else _time.localtime(whole)
         day = f"{parts.tm_year:04d}-{parts.tm_mon:02d}-{parts.tm_mday:02d} " if date else ""  # 0001, as tshark
-        return f"{day}{_time.strftime('%H:%M:%S', parts)}.{micros:06d}"
+        return f"{day}{_time.strftime('%H:%M:%S', parts)}{_decimals(fraction, digits)}"
     except (OverflowError, OSError, ValueError):  # outside time_t or the C library's years
         return NOT_REPRESENTABLE
+
+
+def _signed_text(ns: int, digits: int, cut: bool) -> str:
+    """Seconds from integer nanoseconds, to `digits` decimals, its sign apart (cut toward zero, as tshark)."""
+    whole, fraction = whole_fraction(Stamp(abs(ns)), digits, cut)
+    return f"{'-' if ns < 0 and (whole or fraction) else ''}{whole}{_decimals(fraction, digits)}"
 
 
 @dataclass(slots=True)
@@ -63,6 +96,9 @@ class Clock:
 
     format: str = "r"
     deltas: bool = False  # keep each item's previous captured time even when -t is not d (-e time_delta)
+    # The input's time units a second (a pcap's, a pcapng's if_tsresol: None for others): the column shows
+    # their precision (column_digits), its times cut to it as tshark's; the others' are rounded to us.
+    units: int | None = None
     first: float | None = None  # time of the first timed item captured
     _previous_captured: float | None = None
     _previous_shown: float | None = None
@@ -85,6 +121,10 @@ class Clock:
                 self._before[id(item)] = self._previous_captured
             self._previous_captured = time
 
+    @property
+    def digits(self) -> int:
+        return column_digits(self.units)
+
     def text(self, item: Item) -> str:
         """The column for an item being shown (call in display order)."""
         time = item.time
@@ -92,16 +132,26 @@ class Clock:
             return UNTIMED
         fmt = self.format
         if fmt == "r":
-            return f"{time - (self.first if self.first is not None else time):.6f}"
+            return self._since(time, self.first if self.first is not None else time)
         if fmt == "d":
-            previous = self._before.pop(id(item), None)
-            return f"{time - previous:.6f}" if previous is not None else "0.000000"
+            return self._since(time, self._before.pop(id(item), None))
         if fmt == "dd":
             previous, self._previous_shown = self._previous_shown, time
-            return f"{time - previous:.6f}" if previous is not None else "0.000000"
+            return self._since(time, previous)
+        cut = self.units is not None
         if fmt == "e":
-            return f"{time:.6f}"
-        return _clock_text(time, utc=fmt.startswith("u"), date=fmt.endswith("d"))
+            ns = getattr(time, "ns", None)  # (a float near 1.7e9 s keeps 0.2 us: not 9 decimals)
+            return f"{time:.{self.digits}f}" if ns is None else _signed_text(ns, self.digits, cut)
+        return _clock_text(time, utc=fmt.startswith("u"), date=fmt.endswith("d"), digits=self.digits, cut=cut)
+
+    def _since(self, time: float, reference: float | None) -> str:
+        """`time` less its reference (none: 0) to the column's decimals: a capture's from the stamps'
+        nanoseconds, cut as tshark's; else rounded."""
+        if reference is None:
+            reference = time
+        if self.units is not None and isinstance(time, Stamp) and isinstance(reference, Stamp):
+            return _signed_text(time.ns - reference.ns, self.digits, True)
+        return f"{time - reference:.{self.digits}f}"
 
     def seconds(self, item: Item, key: str) -> str | None:
         """TIME_FIELDS values for an item being shown, 9 decimals as tshark prints them (call in

@@ -59,7 +59,8 @@ class PcapRecords:
         self.order, self.units, self.linktype, self.snaplen = "<", 1_000_000, 0, 0
         self.extra = 0  # record header bytes after the standard 16 (modified pcap)
         self.recorded_until: Stamp | None = None
-        self._chunks = self._read()
+        self._header()  # (at once: its time units set the time column's decimals before any record)
+        self._chunks = self.records(inp)
 
     def __iter__(self) -> PcapRecords:
         return self
@@ -70,7 +71,12 @@ class PcapRecords:
         self.between = chunk.boundary and not self.holding and not self.extra
         return chunk
 
-    def _read(self) -> Iterator[Chunk]:
+    @property
+    def time_units(self) -> int:
+        """Its records' time units a second (render/timefmt.py column_digits)."""
+        return self.units
+
+    def _header(self) -> None:
         inp = self.inp
         header = inp.read(FILE_HEADER_SIZE)
         magic = header[:4]
@@ -88,7 +94,6 @@ class PcapRecords:
         # The upper bits of the link-type field hold FCS information, irrelevant to a serial line.
         self.linktype = network & 0xFFFF
         check_linktype(inp.name, self.linktype)
-        yield from self.records(inp)
 
     def records(self, inp: Input) -> Iterator[Chunk]:
         """The chunks of the records `inp` holds from its position on."""

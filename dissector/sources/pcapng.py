@@ -443,6 +443,15 @@ class PcapngChunks:
     def recorded_until(self) -> Stamp | None:
         return self._reader.last_time
 
+    @property
+    def time_units(self) -> int | None:
+        """The finest time units a second (if_tsresol) of the interfaces described so far, of the one read
+        (`only`) if described; None before any (render/timefmt.py column_digits)."""
+        reader = self._reader
+        described = list(zip(reader.ordinals, reader.interfaces))
+        units = [interface.units for ordinal, interface in described if reader.only in (None, ordinal)]
+        return max(units, default=None)
+
     def _read(self) -> Iterator[Chunk]:
         try:
             yield from self._reader.run()

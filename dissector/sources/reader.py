@@ -216,6 +216,12 @@ class Source:
         interfaces', an empty one: sources/pcapng.py PcapngChunks); None: its last chunk says."""
         return getattr(self._chunks, "recorded_until", None)
 
+    @property
+    def time_units(self) -> int | None:
+        """The time units a second of a pcap's or pcapng's records as far as read (the time column's
+        decimals: render/timefmt.py column_digits); None: not a binary capture, or not known yet."""
+        return getattr(self._chunks, "time_units", None)
+
     def take_warnings(self) -> list[str]:
         new = self._log.messages[self._taken :]
         self._taken = len(self._log.messages)

@@ -52,7 +52,7 @@ def test_an_untimed_input_after_a_timed_one_stays_untimed(tmp_path: Path, monkey
     copy = tmp_path / f"copy{suffix}"
     assert lines(timed, untimed, "-w", copy) == []
     assert lines(copy) == [  # (before: 3 and 4 at 0.012346, the answer [#3, 0.0 ms])
-        f"     1     0.000000  {READ}", f"     2     0.012346  {ANSWERED} [#1, 12.3 ms]  CRC ok",
+        f"     1  0.000000000  {READ}", f"     2  0.012345678  {ANSWERED} [#1, 12.3 ms]  CRC ok",
         f"     3            -  {READ}", f"     4            -  {ANSWERED} [#3]  CRC ok"]
     if suffix == ".pcap":
         assert [ns for ns, _data in pcap_records(copy)] == [T0, T0 + 12_345_678, 0, 0]
@@ -68,7 +68,7 @@ def test_a_read_after_an_untimed_record_keeps_its_time(tmp_path: Path, monkeypat
     original, copy = tmp_path / "file.pcap", tmp_path / "copy.pcap"
     write_pcap(original, [(b"\xdd\xab\xae", None), (b"\x94\x85" + REQUEST, T0), (ANSWER, T0 + 20_000_000)])
     decoded = lines(original)
-    assert decoded[1:] == [f"     2     0.000000  {READ}", f"     3     0.020000  {ANSWERED} [#2, 20.0 ms]  CRC ok"]
+    assert decoded[1:] == [f"     2  0.000000000  {READ}", f"     3  0.020000000  {ANSWERED} [#2, 20.0 ms]  CRC ok"]
     assert lines(original, "-w", copy) == []
     assert pcap_records(copy) == pcap_records(original)
     assert lines(copy) == decoded

@@ -25,11 +25,11 @@ REQUEST = bytes.fromhex("010300000002C40B")  # slave 1 reads 0..1
 ANSWER = bytes.fromhex("010304000100022A32")
 SECONDS = 1_767_225_600
 RECORDS = [(REQUEST, 0), (ANSWER, 10_000_700), (REQUEST, 1_000_000_123), (ANSWER, 1_004_583_999)]  # ns
-LINES = [
-    "     1     0.000000   1 request   Read Holding Registers 0..1 (2)  CRC ok",
-    "     2     0.010001   1 response  Read Holding Registers 0..1 (2): 0=1 1=2 [#1, 10.0 ms]  CRC ok",
-    "     3     1.000000   1 request   Read Holding Registers 0..1 (2)  CRC ok",
-    "     4     1.004584   1 response  Read Holding Registers 0..1 (2): 0=1 1=2 [#3, 4.6 ms]  CRC ok",
+LINES = [  # (nanoseconds: 9 decimals, as tshark's column)
+    "     1  0.000000000   1 request   Read Holding Registers 0..1 (2)  CRC ok",
+    "     2  0.010000700   1 response  Read Holding Registers 0..1 (2): 0=1 1=2 [#1, 10.0 ms]  CRC ok",
+    "     3  1.000000123   1 request   Read Holding Registers 0..1 (2)  CRC ok",
+    "     4  1.004583999   1 response  Read Holding Registers 0..1 (2): 0=1 1=2 [#3, 4.6 ms]  CRC ok",
 ]
 TIMES = [(1767225600.0, None), (1767225600.0100007, 0.0100007), (1767225601.0000002, None),
          (1767225601.004584, 0.004583876)]
@@ -111,10 +111,13 @@ def test_binary_units_are_copied_in_nanoseconds(tmp_path: Path) -> None:
     original = tmp_path / "binary.pcapng"
     original.write_bytes(section + interface + packets)
     lines = run(original)
-    assert [line.split()[1] for line in lines] == ["0.000000", "0.010742", "1.000977"]
+    assert [line.split()[1] for line in lines] == ["0.000", "0.010", "1.000"]  # (ms, cut: as tshark's column)
     written = tmp_path / "copy.pcap"
     run(original, "-w", written)
-    assert written.read_bytes()[:4] == NANO_MAGIC and run(written) == lines  # was 1.000976
+    copied = run(written)  # was 1.000976 (then 6 decimals)
+    assert written.read_bytes()[:4] == NANO_MAGIC
+    assert [line.split()[1] for line in copied] == ["0.000000000", "0.010742187", "1.000976562"]
+    assert [line.split()[2:] for line in copied] == [line.split()[2:] for line in lines]
 
 
 def test_a_text_log_with_nanoseconds(tmp_path: Path) -> None:
