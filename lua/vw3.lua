@@ -4253,7 +4253,7 @@ end
 
 -- CRC-16/MODBUS of bytes[from] .. bytes[to - 1], from the register l, h (its two bytes times 256, as TWO_LO
 -- and TWO_HI hold them: fewer operations a byte; 0xFF00, 0xFF00: a new CRC); returns the register so.
--- `read` reads the bytes sixteen a call (then four, two, one): unpack from a 0-based byte table,
+-- `read` reads the bytes sixteen a call (then two, one): unpack from a 0-based byte table,
 -- string.byte from a string. Called as crc_string_ok(bytes, n), without `read`: does a record's string
 -- (the whole frame, n bytes, 1-based) end in its CRC? (A record of one frame is checked before its byte
 -- table is needed, and a call of string.byte costs less than the table reads it saves.)
@@ -4281,15 +4281,7 @@ local function crc_string_ok(bytes, to, read, from, l, h)
     l, h = TWO_LO[w], TWO_HI[w]
     k = k + 16
   end
-  while k + 3 < to do
-    local a, b, c, d = read(bytes, k, k + 3)
-    local w = XOR8[h + b] * 256 + XOR8[l + a]
-    l, h = TWO_LO[w], TWO_HI[w]
-    w = XOR8[h + d] * 256 + XOR8[l + c]
-    l, h = TWO_LO[w], TWO_HI[w]
-    k = k + 4
-  end
-  if k + 1 < to then
+  while k + 1 < to do
     local a, b = read(bytes, k, k + 1)
     local w = XOR8[h + b] * 256 + XOR8[l + a]
     l, h = TWO_LO[w], TWO_HI[w]
@@ -4845,7 +4837,7 @@ local function await_answer(s, frame)
 end
 
 -- What the framer expects after a frame: the answer to a request that awaits one (with its length: the frame's
--- bytes are dropped once it is decoded), else nothing.
+-- bytes are dropped once it is decoded), else nothing; and what that answer must repeat (_await_after).
 local function expect_after(s, frame)
   if frame.kind == REQUEST and awaits_answer(frame) then
     s.expect = frame.slave * 256 + frame.fn -- (a request's code is its function)
@@ -4853,6 +4845,7 @@ local function expect_after(s, frame)
   else
     s.expect = nil
   end
+  if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (an FC8 sub-function)
 end
 
 local GLITCH_RUN, GLITCH_SCORE_MAX = FRAMING.glitch_run, FRAMING.glitch_score_max
@@ -4879,7 +4872,6 @@ local function emit(s, frame, items)
   items[#items + 1] = frame
   s.framed_end = frame.offset + frame.length -- (a bound: bounded.py _bounded_start)
   expect_after(s, frame)
-  if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, _await_after)
 end
 
 -- Is a reading of `kind` and `length` at the answer awaited's start a normal answer of another length than its
@@ -9007,7 +8999,6 @@ dissect_record = function(st, bytes, time, number)
     local frame
     frame, built = feed_whole(st, bytes, time)
     if frame ~= nil then
-      if ECHO_CODES[frame.fn] then await_echo(st, frame) end -- (what its answer must repeat)
       local record = { frame }
       st.last = record
       frame.number, frame.record = st.count, number -- (counted by feed_whole)

@@ -459,7 +459,6 @@ dissect_record = function(st, bytes, time, number)
     local frame
     frame, built = feed_whole(st, bytes, time)
     if frame ~= nil then
-      if ECHO_CODES[frame.fn] then await_echo(st, frame) end -- (what its answer must repeat)
       local record = { frame }
       st.last = record
       frame.number, frame.record = st.count, number -- (counted by feed_whole)

@@ -268,7 +268,7 @@ local function await_answer(s, frame)
 end
 
 -- What the framer expects after a frame: the answer to a request that awaits one (with its length: the frame's
--- bytes are dropped once it is decoded), else nothing.
+-- bytes are dropped once it is decoded), else nothing; and what that answer must repeat (_await_after).
 local function expect_after(s, frame)
   if frame.kind == REQUEST and awaits_answer(frame) then
     s.expect = frame.slave * 256 + frame.fn -- (a request's code is its function)
@@ -276,6 +276,7 @@ local function expect_after(s, frame)
   else
     s.expect = nil
   end
+  if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (an FC8 sub-function)
 end
 
 local GLITCH_RUN, GLITCH_SCORE_MAX = FRAMING.glitch_run, FRAMING.glitch_score_max
@@ -302,7 +303,6 @@ local function emit(s, frame, items)
   items[#items + 1] = frame
   s.framed_end = frame.offset + frame.length -- (a bound: bounded.py _bounded_start)
   expect_after(s, frame)
-  if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, _await_after)
 end
 
 -- Is a reading of `kind` and `length` at the answer awaited's start a normal answer of another length than its
