@@ -144,13 +144,14 @@ def check_linktype(name: str, linktype: int, where: str = "") -> None:
         raise linktype_error(name, linktype, where)
 
 
-def rtac_header(
-    head: bytes, record: int, log: WarningLog, name: str = "-"
-) -> tuple[Stamp, int] | None:
+def rtac_header(head: bytes, record: int, log: WarningLog) -> tuple[Stamp | None, int] | None:
     """(time, header length) from an RTAC serial record's start; None when the header is cut.
 
     The RTAC's own timestamp (u32 seconds, u32 microseconds, big-endian) is when the device saw
-    the bytes, which is what response times need; the pcap record time is when it was stored.
+    the bytes, which is what response times need; the pcap record time is when it was stored. Its
+    microseconds 1 s or more: a corrupt stamp, the bytes decoded untimed with a warning (tshark's
+    rtacser shows the field as it is; 4294967295 us read as 4294.97 s put a response 71 minutes
+    before its request).
     """
     if len(head) < RTAC_HEADER.size:
         log.warn(
@@ -160,14 +161,15 @@ def rtac_header(
         )
         return None
     seconds, micros, event, _lines, _footer = RTAC_HEADER.unpack_from(head)
+    time: Stamp | None = Stamp.from_parts(seconds, micros, 1_000_000)
     if micros >= 1_000_000:
-        # (4294967295 us read as 4294.97 s put a response 71 minutes before its request)
-        raise SourceError(f"{name}: record {record}: RTAC microseconds {micros} are not below 1000000: "
-                          "a corrupt time stamp?")
+        log.warn("corrupt time stamps", f"record {record}: RTAC microseconds {micros} are not below 1000000: "
+                 "a corrupt time stamp? Its bytes are decoded untimed")
+        time = None
     trouble = RTAC_TROUBLE_EVENTS.get(event)
     if trouble is not None:
         log.warn("RTAC line events", f"record {record}: the RTAC reports a {trouble} (event {event:#04x})")
-    return Stamp.from_parts(seconds, micros, 1_000_000), RTAC_HEADER.size
+    return time, RTAC_HEADER.size
 
 
 @dataclass(slots=True)
@@ -209,7 +211,7 @@ def record_chunks(
                 "(the capture ends inside it); the bytes that are there are decoded",
             )
         if first and linktype == LINKTYPE_RTAC_SERIAL:
-            header = rtac_header(piece, record, log, inp.name)
+            header = rtac_header(piece, record, log)
             if header is None:
                 inp.skip(remaining)
                 return

@@ -117,8 +117,9 @@ class PcapRecords:
                 )
                 return
             seconds, fraction, captured, original = record_header.unpack(head)
-            if fraction >= self.units:
-                raise SourceError(f"{inp.name}: record {self.record}: {fraction_error(fraction, self.units)}")
+            corrupt = fraction >= self.units
+            if corrupt:
+                log.warn(CORRUPT_STAMPS, f"record {self.record}: {fraction_error(fraction, self.units)}")
             if captured < original:
                 log.warn(
                     "records captured in part",
@@ -130,16 +131,16 @@ class PcapRecords:
                     f"record {self.record}: {captured} bytes, more than the file header's snapshot length "
                     f"({self.snaplen}): a damaged file?",
                 )
-            time: Stamp | None = Stamp.from_parts(seconds, fraction, self.units)
+            time = None if corrupt else Stamp.from_parts(seconds, fraction, self.units)
             chunks = record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size)
             epoch = not (seconds or fraction)
-            if not epoch and self.linktype != LINKTYPE_RTAC_SERIAL:  # (an RTAC record's time is in its bytes)
+            if not epoch and not corrupt and self.linktype != LINKTYPE_RTAC_SERIAL:  # (an RTAC's is in its bytes)
                 self.recorded_until = time
             if epoch and self.record == 1 and self.linktype != LINKTYPE_RTAC_SERIAL and held.hold(captured, chunks):
                 continue
             if held.chunks is not None:
                 self.holding = True
-                yield from held.release(within_day_zero(epoch, seconds))
+                yield from held.release(within_day_zero(epoch, seconds) and not corrupt)
                 self.holding = False
             if epoch and self.linktype != LINKTYPE_RTAC_SERIAL:
                 # (-w's untimed record: see EpochRecord; an RTAC record carries its own time)
@@ -147,11 +148,15 @@ class PcapRecords:
             yield from chunks
 
 
+CORRUPT_STAMPS = "corrupt time stamps"
+
+
 def fraction_error(fraction: int, units: int) -> str:
-    """Why a record's fraction of a second is refused (libpcap.c takes one >= 1 s as a sign of a
-    misread header; tshark shows it unnormalised: 0.385 s for 4,000,000,000 us)."""
+    """Why a record's fraction of a second is not taken: its bytes are decoded untimed, the file is not
+    refused (tshark 4.0 reads it, showing the stamp unnormalised: 0.1385347 s for 4,000,000,000 us;
+    wiretap's libpcap.c takes a fraction >= 1 s only as a hint when it guesses a file's variant)."""
     return (f"fraction of a second {fraction} is not below {units} (1 s in the file's units): "
-            "a corrupt time stamp?")
+            "a corrupt time stamp? Its bytes are decoded untimed")
 
 
 DAY_ZERO_END = 86_400  # s: where a time-of-day log of day 0 (1970-01-01) ends

@@ -3,7 +3,7 @@
 vw3-decode -w writes untimed input at the epoch, every record, and reads such records back untimed; a
 capture whose first record is at 1970-01-01 00:00:00 and whose next ones are later (a time-of-day log of
 day 0) is timed (sources/pcap.py EpochRecord). A fraction of a second of 1 s or more (pcap usec, nsec,
-an RTAC serial header's microseconds) is a corrupt stamp: refused in one line, exit 2.
+an RTAC serial header's microseconds) is a corrupt stamp: its record decoded untimed, with a warning.
 """
 from __future__ import annotations
 
@@ -144,20 +144,28 @@ def test_a_first_record_at_the_epoch_before_a_real_date_is_untimed(
 @BOTH
 @pytest.mark.parametrize("nano, fraction, units", [(False, 4_000_000_000, 1_000_000), (False, 1_000_000, 1_000_000),
                                                    (True, 1_000_000_000, 1_000_000_000)])
-def test_a_fraction_of_a_second_of_1_s_or_more_is_refused(
+def test_a_fraction_of_a_second_of_1_s_or_more_is_decoded_untimed(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool, nano: bool, fraction: int, units: int
 ) -> None:
+    """The record's bytes decoded untimed with a warning, the file not refused: tshark 4.0 reads it (its
+    column shows the stamp unnormalised). Before, the whole file was refused (exit 2)."""
     # Record 4: past the first records, where the engine reads records in bulk (it hands this one back).
     path = tmp_path / "usec.pcap"
-    path.write_bytes(_pcap([(100, 1, REQUEST), (100, 2, RESPONSE), (100, 3, REQUEST), (100, fraction, RESPONSE)],
-                           nano=nano))
-    status, _, err = _decode([str(path)], monkeypatch, pure)
-    assert (status, err) == (2, f"vw3-decode: {path}: record 4: fraction of a second {fraction} is not below "
-                                f"{units} (1 s in the file's units): a corrupt time stamp?\n")
+    path.write_bytes(_pcap([(100, 1, REQUEST), (100, 2, RESPONSE), (100, 3, REQUEST), (100, fraction, RESPONSE),
+                            (101, 0, REQUEST)], nano=nano))
+    status, out, err = _decode([str(path)], monkeypatch, pure)
+    zero = "0." + "0" * (9 if nano else 6)
+    assert (status, err) == (0, f"vw3-decode: warning: record 4: fraction of a second {fraction} is not below "
+                                f"{units} (1 s in the file's units): a corrupt time stamp? Its bytes are decoded "
+                                "untimed\n")
+    assert [line[:20] for line in out.splitlines()] == [
+        f"     1 {zero:>12} ", "     2 " + ("0.000000001" if nano else "0.000001").rjust(12) + " ",
+        "     3 " + ("0.000000002" if nano else "0.000002").rjust(12) + " ", "     4            - ",
+        "     5 " + ("0.999999999" if nano else "0.999999").rjust(12) + " "]
+    assert out.splitlines()[3].endswith("[#3]  CRC ok")  # (no response time from a stamp not known)
     path.write_bytes(_pcap([(100, fraction, REQUEST)], nano=nano))
-    status, _, err = _decode([str(path), "--json"], monkeypatch, pure)
-    assert (status, err) == (2, f"vw3-decode: {path}: record 1: fraction of a second {fraction} is not below "
-                                f"{units} (1 s in the file's units): a corrupt time stamp?\n")
+    status, out, err = _decode([str(path), "--json"], monkeypatch, pure)
+    assert (status, json.loads(out)["time"], err.count("corrupt time stamp?")) == (0, None, 1)
 
 
 def _rtac(seconds: int, micros: int, data: bytes) -> bytes:
@@ -165,15 +173,16 @@ def _rtac(seconds: int, micros: int, data: bytes) -> bytes:
 
 
 @BOTH
-def test_rtac_microseconds_of_1_s_or_more_are_refused(
+def test_rtac_microseconds_of_1_s_or_more_are_decoded_untimed(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool
 ) -> None:
     path = tmp_path / "rtac.pcap"
     path.write_bytes(_pcap([(100, 0, _rtac(15815525, 999_999, REQUEST)),
                             (100, 0, _rtac(15815525, 0xFFFFFFFF, RESPONSE))], linktype=250))
     status, out, err = _decode([str(path)], monkeypatch, pure)
-    assert (status, err) == (2, f"vw3-decode: {path}: record 2: RTAC microseconds 4294967295 are not below "
-                                "1000000: a corrupt time stamp?\n")
+    assert (status, err) == (0, "vw3-decode: warning: record 2: RTAC microseconds 4294967295 are not below "
+                                "1000000: a corrupt time stamp? Its bytes are decoded untimed\n")
+    assert out.splitlines()[1].startswith("     2            -  12 response") and out.endswith("[#1]  CRC ok\n")
     path.write_bytes(_pcap([(0, 0, _rtac(15815525, 990_000, REQUEST)),
                             (0, 0, _rtac(15815526, 0, RESPONSE))], linktype=250))
     status, out, err = _decode([str(path)], monkeypatch, pure)
