@@ -18,6 +18,7 @@ from dissector.render.fields import FieldsOptions, parse_fields_options
 from dissector.render.output import OutputOptions
 from dissector.render.registers import parse_registers_options
 from dissector.render.timefmt import TIME_FORMATS
+from dissector.sources.common import name_text
 from dissector.sources.reader import FORMATS, MODES
 
 PROG = "vw3-decode"
@@ -27,7 +28,7 @@ def shown(message: object) -> str:
     are data, their control characters escaped as the rule titles and `==>` headers escape them
     (printable: `e\\x1b[2Jmpty.bin`); a filter error's lines are escaped already (FilterError.lines)."""
     lines = getattr(message, "lines", None)
-    return "\n".join(lines) if lines is not None else printable(str(message))
+    return "\n".join(lines) if lines is not None else printable(name_text(str(message)))
 
 
 class Parser(argparse.ArgumentParser):

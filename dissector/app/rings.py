@@ -11,6 +11,7 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 from dissector.model import Chunk
+from dissector.sources.common import name_text
 
 # dumpcap's ring buffer names: PREFIX_NNNNN_YYYYMMDDHHMMSS.EXT
 RING_NAME = re.compile(r"^(?P<prefix>.*)_(?P<number>\d{5,})_(?P<stamp>\d{14})(?P<suffix>\.[^./]*)?$")
@@ -19,7 +20,7 @@ RING_NAME = re.compile(r"^(?P<prefix>.*)_(?P<number>\d{5,})_(?P<stamp>\d{14})(?P
 def group_files(paths: list[str]) -> list[tuple[str, tuple[str, ...]]]:
     """(shown, files) per capture, in the order first named: a ring buffer's files (same folder, prefix
     and suffix) by file number, shown as `folder/PREFIX.EXT` (its one file's name when only one is
-    given); any other path alone, as named. Files of several dumpcap runs under one name (a capture
+    given); any other path alone, as named (its bytes that are not UTF-8 as \\xNN: sources/common.py name_text). Files of several dumpcap runs under one name (a capture
     restarted in the same folder numbers its files from 00001 again) are one capture a run (_runs), each
     shown as its first file's name: read by number alone, the runs' files were one stream, interleaved."""
     rings: dict[tuple[str, str, str], list[tuple[int, str, str]]] = {}
@@ -38,13 +39,13 @@ def group_files(paths: list[str]) -> list[tuple[str, tuple[str, ...]]]:
     groups = []
     for key in order:
         if len(key) == 2:
-            groups.append((key[0], (key[0],)))
+            groups.append((name_text(key[0]), (key[0],)))
             continue
         folder, prefix, suffix = key  # type: ignore[misc]
         runs = _runs(rings[key])  # type: ignore[index]
         for files in runs:
             whole = len(files) > 1 and len(runs) == 1
-            groups.append((os.path.join(folder, prefix + suffix) if whole else files[0], files))
+            groups.append((name_text(os.path.join(folder, prefix + suffix) if whole else files[0]), files))
     return groups
 
 

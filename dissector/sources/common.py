@@ -46,6 +46,17 @@ def outside_time_range(ns: int, offset: int = 0) -> str | None:
             "can show: a corrupt time stamp?")
 
 
+def name_text(name: str) -> str:
+    """A file name as messages, titles and outputs show it: each byte that is not UTF-8 (Python's
+    os and argv give it as a lone surrogate U+DC80..U+DCFF, PEP 383) as \\xNN, the form the tool escapes
+    control characters in (protocol/printable.py). Never the raw byte (tshark prints it: 0x9b is a CSI
+    to an 8-bit terminal), nor `\\udcff`, which names no character of the name; written out, it raised
+    UnicodeEncodeError (--report)."""
+    if name.isascii() or not any("\udc80" <= char <= "\udcff" for char in name):
+        return name
+    return "".join(f"\\x{ord(char) - 0xDC00:02x}" if "\udc80" <= char <= "\udcff" else char for char in name)
+
+
 MESSAGES_PER_KIND = 5  # warnings of one kind shown before they are only counted
 
 

@@ -484,7 +484,7 @@ def test_a_non_utf8_file_name_in_a_report(tmp_path: Path) -> None:
     report = tmp_path / "report.html"
     status, out, err = run_cli([name, "--report", str(report)])
     assert (status, err) == (0, "")
-    assert "n\\udcff.bin" in report.read_text(encoding="utf-8")
+    assert "n\\xff.bin" in report.read_text(encoding="utf-8")  # (its byte, as every title shows it)
 
 
 def _vw3(*argv: str, env: dict[str, str] | None = None, limit: int | None = None) -> subprocess.CompletedProcess[str]:
