@@ -19,6 +19,7 @@ import os
 import stat
 import sys
 from collections.abc import Callable, Iterator
+from itertools import islice
 from typing import BinaryIO
 
 from dissector.protocol.ascii import MODE_REACH, MODE_SAMPLE, sample_mode  # (MODE_SAMPLE: codegen's)
@@ -218,9 +219,15 @@ class Source:
 
     @property
     def time_units(self) -> int | None:
-        """The time units a second of a pcap's or pcapng's records as far as read (the time column's
-        decimals: render/timefmt.py column_digits); None: not a binary capture, or not known yet."""
-        return getattr(self._chunks, "time_units", None)
+        """The time units a second of a pcap's or pcapng's records (the time column's decimals:
+        render/timefmt.py column_digits); None: not a binary capture, or one with no record. A pcapng none
+        of whose packets was read yet (--mode: no sample) reads its first now (replayed first): its
+        interfaces are described before it. (Asked before its chunks are read.)"""
+        units = getattr(self._chunks, "time_units", None)
+        if units is None and self.format == "pcapng" and not self._head:
+            self._head = list(islice(self._chunks, 1))
+            units = getattr(self._chunks, "time_units", None)
+        return units
 
     def take_warnings(self) -> list[str]:
         new = self._log.messages[self._taken :]

@@ -87,6 +87,17 @@ def test_pcapng_tsresol_precision_cut(tmp_path: Path, monkeypatch: pytest.Monkey
     assert columns(["-t", "dd", tenth], monkeypatch, pure) == ["0.000", "0.022"]
 
 
+@BOTH
+def test_standard_input_with_mode_given(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    """--mode: no packet is read to sample the mode at its opening; a pcapng from standard input is judged
+    by its interface all the same (was 6 decimals)."""
+    data = pcapng(tmp_path / "ns.pcapng", 9, NANOS).read_bytes()
+    use_engine(monkeypatch, pure)
+    status, out, err = run_cli(["--mode", "rtu", "-"], stdin=data)
+    assert (status, err) == (0, "")
+    assert [line.split()[1] for line in out.splitlines()] == ["0.000000000", "0.012999000"]
+
+
 RESOLUTIONS = [0, 1, 2, 3, 4, 6, 7, 9, 0x80 | 3, 0x80 | 4, 0x80 | 10, 0x80 | 20, 0x80 | 29, 0x80 | 30]
 
 
