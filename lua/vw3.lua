@@ -6078,15 +6078,13 @@ end
 local function u16(b, k) return b[k] * 256 + b[k + 1] end
 
 -- A frame's warnings and notes lists are made with their first entry (most frames have none).
-local function warn(frame, text)
-  local warnings = frame.warnings
-  if warnings == nil then frame.warnings = { text } else warnings[#warnings + 1] = text end
+local function adder(key)
+  return function(f, text)
+    local list = f[key]
+    if list == nil then f[key] = { text } else list[#list + 1] = text end
+  end
 end
-
-local function note(f, text)
-  local notes = f.notes
-  if notes == nil then f.notes = { text } else notes[#notes + 1] = text end
-end
+local warn, note = adder("warnings"), adder("notes")
 
 -- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
 local function string_of(b, first, count)
@@ -6096,6 +6094,12 @@ local function string_of(b, first, count)
     parts[#parts + 1] = string.char(table.unpack(b, first + k, first + math.min(k + 200, count) - 1))
   end
   return concat(parts)
+end
+
+-- b[first..last] as text where every byte is printable ASCII (as vw3-decode shows a device's data), else nil.
+local function printable_ascii(b, first, last)
+  local text = string_of(b, first, last - first + 1)
+  return not text:find("[^ -~]") and text or nil
 end
 
 -- Bytes b[first .. last] in hex, each by `pattern` (%02x, %02X), joined by `gap`.
@@ -6294,8 +6298,8 @@ local SPECIAL = {
       if ends == nil then
         warn(f, say("run_indicator", { value = run })) -- (OFF, ON: none where any length of server id puts it)
       else -- (the id runs to the first 00 or FF after its first byte: fields.py _report_server_id_response)
-        local text = string_of(b, first, ends - first)
-        local shown = text:find("[^ -~]") and hex_of(b, first, ends - 1, "%02X", " ") or python_repr(text)
+        local text = printable_ascii(b, first, ends - 1)
+        local shown = text and python_repr(text) or hex_of(b, first, ends - 1, "%02X", " ")
         warn(f, say("longer_server_id", { value = run, server_id = shown, run = names[b[ends]] }))
       end
     end
@@ -6358,8 +6362,9 @@ end
 M.CONFIRMED, M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS = CONFIRMED, DIAGNOSTICS, EXCEPTIONS, FUNCTIONS
 M.LIFT_OF, M.LIMITS, M.NOT_BROADCAST, M.bit_at = LIFT_OF, LIMITS, NOT_BROADCAST, bit_at
 M.decode_frame, M.exception_name, M.fill, M.function_name = decode_frame, exception_name, fill, function_name
-M.note, M.register_at, M.release_run, M.say, M.string_of = note, register_at, release_run, say, string_of
-M.trusted_request, M.u16, M.verified, M.warn = trusted_request, u16, verified, warn
+M.hex_of, M.note, M.printable_ascii, M.register_at = hex_of, note, printable_ascii, register_at
+M.release_run, M.say, M.string_of, M.trusted_request, M.u16 = release_run, say, string_of, trusted_request, u16
+M.verified, M.warn = verified, warn
 end
 
 -- ---- vw3.pairing: lua/src/pairing.lua ----
@@ -7055,7 +7060,7 @@ end
 M.parse_map = parse_map
 M.AUTO, M.PLAIN_READS, M.PROFILES, M.READS, M.READ_LIMIT = AUTO, PLAIN_READS, PROFILES, READS, READ_LIMIT
 M.SELECTION, M.parse_map_choice, M.parse_profile_choice = SELECTION, parse_map_choice, parse_profile_choice
-M.printable, M.python_repr = printable, python_repr
+M.python_repr = python_repr
 end
 
 -- ---- vw3.device: lua/src/device.lua ----
@@ -9262,9 +9267,9 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, MASK_WRITES = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, MASK_WRITES
 local NO_INTERPRETATION, PARAMETER_FIELDS, REQUEST, concat = NO_INTERPRETATION, PARAMETER_FIELDS, REQUEST, concat
 local describe, device_of, ex, exception_name, floor = describe, device_of, ex, exception_name, floor
-local format, function_name, hex_pairs, ipairs, made_once = format, function_name, hex_pairs, ipairs, made_once
-local math, pf, python_repr, say, string, table, tostring = math, pf, python_repr, say, string, table, tostring
-local u16, words_at = u16, words_at
+local format, function_name, hex_of, hex_pairs, ipairs = format, function_name, hex_of, hex_pairs, ipairs
+local made_once, math, pf, printable_ascii, python_repr = made_once, math, pf, printable_ascii, python_repr
+local say, string, tostring, u16, words_at = say, string, tostring, u16, words_at
 
 -- `1 byte`, `2 bytes`: a count and its noun, singular for one (describe.count_text).
 local function count_text(count, noun)
@@ -9413,12 +9418,10 @@ end
 -- the window, registers, bits, objects). Read from the frame's bytes when shown: a record keeps no fields.
 local LAYOUTS, PARTS = DATA.rules.layouts, DATA.rules.parts
 
--- b[first..last] as text where every byte is printable ASCII (as vw3-decode shows a device's data), else nil.
-local function printable(b, first, last)
-  for k = first, last do
-    if b[k] < 32 or b[k] > 126 then return nil end
-  end
-  return string.char(table.unpack(b, first, last))
+-- The name of the layout a frame's kind and function code read ("raw": none).
+local function layout_of(kind, fn)
+  local entry = LAYOUT_OF[kind] and LAYOUT_OF[kind][fn]
+  return entry and entry.layout or "raw"
 end
 
 -- A counted field's bytes from its count's value (as codegen/decode_lua.py's _size_of; odd: the byte an
@@ -9477,7 +9480,7 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
         elseif kind == "odd" then
           t:add(pf[shown[1]], frame_range(tvb, f, at, 1), b[at])
         elseif kind == "text" then -- (as text where every byte is printable ASCII, as vw3-decode)
-          local text = printable(b, at, at + size - 1)
+          local text = printable_ascii(b, at, at + size - 1)
           if text then t:add(pf[shown[1]], frame_range(tvb, f, at, size), text)
           else t:add(pf[shown[2]], frame_range(tvb, f, at, size)) end
         else
@@ -9503,12 +9506,11 @@ end
 -- The PDU's fields of a frame that parsed (not an exception's: its code is shown as such), under `t`; an
 -- FC22's register after them.
 local function add_pdu(t, tvb, f, stop)
-  local entry = LAYOUT_OF[f.kind] and LAYOUT_OF[f.kind][f.fn]
-  local layout = LAYOUTS[entry and entry.layout or "raw"]
-  if f.malformed or #layout == 0 then return end
+  local name = layout_of(f.kind, f.fn)
+  if f.malformed or #LAYOUTS[name] == 0 then return end
   local b = frame_bytes(f, tvb)
-  add_shape(t, tvb, f, b, layout, 2, stop)
-  if MASK_WRITES[f.fn] then add_register(t, tvb, f, mask_register(f, b, DATA.field_places[entry.layout]), nil, true) end
+  add_shape(t, tvb, f, b, LAYOUTS[name], 2, stop)
+  if MASK_WRITES[f.fn] then add_register(t, tvb, f, mask_register(f, b, DATA.field_places[name]), nil, true) end
 end
 
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than
@@ -9523,19 +9525,10 @@ local DECIMAL = made_once(function(number) return format("%d", number) end)
 -- FORMS[fn][kind]: the form as a function of the frame (below: DATA.info_forms; nil for the usual codes).
 local INFO = DATA.fields.info
 local MAX_DATA_BYTES, MAX_FIFO_VALUES = INFO.max_data_bytes, INFO.max_fifo_values
-local HEX_BYTE = made_once(function(value) return format("%02x", value) end)
 -- Tables the texts are put together in, reused (Info texts are made for every record shown: a table each
 -- time costs more, in the collector, than the text).
-local HEX, VALUES, GROUP = {}, {}, {}
+local VALUES, GROUP = {}, {}
 
--- Where each field of a layout begins (from the slave byte, 0) and its size, up to the first field of no
--- fixed size (DATA.field_places, codegen/display_lua.py); fields_at: those of the layout a frame's kind and
--- function code read.
-local FIELD_AT = DATA.field_places
-local function fields_at(kind, fn)
-  local entry = LAYOUT_OF[kind] and LAYOUT_OF[kind][fn]
-  return FIELD_AT[entry and entry.layout or "raw"]
-end
 
 -- describe._data: FC8's data (b[first..last]), ` = 7` for a word, ` data 0a0b…` (its first MAX_DATA_BYTES
 -- bytes, then how many more) for other data, nothing for none.
@@ -9543,10 +9536,9 @@ local function data_text(b, first, last)
   local size = last - first + 1
   if size == 2 then return " = " .. DECIMAL[b[first] * 256 + b[first + 1]] end
   if size <= 0 then return "" end
-  local shown = size < MAX_DATA_BYTES and size or MAX_DATA_BYTES
-  for k = 1, shown do HEX[k] = HEX_BYTE[b[first + k - 1]] end
-  if size <= MAX_DATA_BYTES then return " data " .. concat(HEX, "", 1, shown) end
-  return " data " .. concat(HEX, "", 1, shown) .. "… (+" .. count_text(size - MAX_DATA_BYTES, "byte") .. ")"
+  local data = " data " .. hex_of(b, first, first + math.min(size, MAX_DATA_BYTES) - 1, "%02x", "")
+  if size <= MAX_DATA_BYTES then return data end
+  return data .. "… (+" .. count_text(size - MAX_DATA_BYTES, "byte") .. ")"
 end
 
 -- describe._fifo: `:` and the first MAX_FIFO_VALUES of `count` values from b[first] (none past b[last]),
@@ -9596,15 +9588,14 @@ function BY_NAME.report_server_id(f, b, base)
   if f.kind == REQUEST or b[base + 2] == 0 then return "" end -- (byte count 0: no server id)
   if b[base + 2] < 2 then return "server id " .. DECIMAL[b[base + 3]] end -- (byte count 1: the id alone)
   local count, run = b[base + 2] - 2, b[base + 4]
-  local text = count > 0 and printable(b, base + 5, base + 4 + count)
+  local text = count > 0 and printable_ascii(b, base + 5, base + 4 + count)
   local data = text and python_repr(text) or count_text(count, "byte")
   return "server id " .. DECIMAL[b[base + 3]] .. ", run " .. (RUN_INDICATOR[run] or DECIMAL[run]) .. ", " .. data
 end
 
 -- describe._file_record: `2 record group(s)`, the sub-requests, sub-responses or records its byte count holds.
 function BY_NAME.file_record(f, b, base)
-  local entry = LAYOUT_OF[f.kind][f.fn]
-  local field = LAYOUTS[entry.layout][2] -- (after the byte count: the records)
+  local field = LAYOUTS[layout_of(f.kind, f.fn)][2] -- (after the byte count: the records)
   local part, at = PARTS[field.part], base + 3
   local last, groups = at + b[base + 2], 0
   while at < last do
@@ -9699,8 +9690,8 @@ local function summary(f, tvb, st, device)
   return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail
 end
 M.START_WORDS, M.add_pdu, M.add_register, M.add_said = START_WORDS, add_pdu, add_register, add_said
-M.add_text, M.count_text, M.fields_at, M.frame_bytes = add_text, count_text, fields_at, frame_bytes
-M.frame_range, M.summary, M.unseen = frame_range, summary, unseen
+M.add_text, M.count_text, M.frame_bytes, M.frame_range = add_text, count_text, frame_bytes, frame_range
+M.summary, M.unseen = summary, unseen
 end
 
 -- ---- vw3.clock: lua/src/clock.lua ----
@@ -9887,7 +9878,7 @@ local KIND_NUMBER, MASK_WRITES, NOISE, NO_INTERPRETATION = KIND_NUMBER, MASK_WRI
 local PLC_LABELS, REQUEST, START_WORDS, add_pdu = PLC_LABELS, REQUEST, START_WORDS, add_pdu
 local add_register, add_said, add_text, bit_at, concat = add_register, add_said, add_text, bit_at, concat
 local count_text, device_of, ended, ex, exception_name = count_text, device_of, ended, ex, exception_name
-local fields_at, finish_safely, floor, format, frame_bytes = fields_at, finish_safely, floor, format, frame_bytes
+local finish_safely, floor, format, frame_bytes = finish_safely, floor, format, frame_bytes
 local frame_range, function_name, inferred_registers = frame_range, function_name, inferred_registers
 local ipairs, keep_time, lane, math, pack, pairs, pf = ipairs, keep_time, lane, math, pack, pairs, pf
 local pinfo_cols, plc_base, proto, record_ns, register_view = pinfo_cols, plc_base, proto, record_ns, register_view
@@ -9899,7 +9890,7 @@ local UNMATCHED = say("unmatched", {}) -- (data/modbus.toml [texts])
 local function add_window(t, tvb, f, field, what, value)
   local entry = f.kind ~= EXCEPTION and DATA.rules.by_code[f.kind][f.fn]
   local rule = entry and DATA.rules.lift[entry.rule]
-  local place = rule and type(rule[what]) == "string" and fields_at(f.kind, f.fn)[rule[what]]
+  local place = rule and type(rule[what]) == "string" and DATA.field_places[entry.layout][rule[what]]
   if not (place and place.size) then return t:add(field, tvb:range(f.at, 0), value):set_generated() end
   local item, name = t:add(field, frame_range(tvb, f, place.at, place.size), value), rule[what]
   -- (named as vw3-decode -V names the PDU field where it is not the window's own: FC23's `Read start`)

@@ -44,15 +44,13 @@ end
 local function u16(b, k) return b[k] * 256 + b[k + 1] end
 
 -- A frame's warnings and notes lists are made with their first entry (most frames have none).
-local function warn(frame, text)
-  local warnings = frame.warnings
-  if warnings == nil then frame.warnings = { text } else warnings[#warnings + 1] = text end
+local function adder(key)
+  return function(f, text)
+    local list = f[key]
+    if list == nil then f[key] = { text } else list[#list + 1] = text end
+  end
 end
-
-local function note(f, text)
-  local notes = f.notes
-  if notes == nil then f.notes = { text } else notes[#notes + 1] = text end
-end
+local warn, note = adder("warnings"), adder("notes")
 
 -- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
 local function string_of(b, first, count)
@@ -62,6 +60,12 @@ local function string_of(b, first, count)
     parts[#parts + 1] = string.char(table.unpack(b, first + k, first + math.min(k + 200, count) - 1))
   end
   return concat(parts)
+end
+
+-- b[first..last] as text where every byte is printable ASCII (as vw3-decode shows a device's data), else nil.
+local function printable_ascii(b, first, last)
+  local text = string_of(b, first, last - first + 1)
+  return not text:find("[^ -~]") and text or nil
 end
 
 -- Bytes b[first .. last] in hex, each by `pattern` (%02x, %02X), joined by `gap`.
@@ -260,8 +264,8 @@ local SPECIAL = {
       if ends == nil then
         warn(f, say("run_indicator", { value = run })) -- (OFF, ON: none where any length of server id puts it)
       else -- (the id runs to the first 00 or FF after its first byte: fields.py _report_server_id_response)
-        local text = string_of(b, first, ends - first)
-        local shown = text:find("[^ -~]") and hex_of(b, first, ends - 1, "%02X", " ") or python_repr(text)
+        local text = printable_ascii(b, first, ends - 1)
+        local shown = text and python_repr(text) or hex_of(b, first, ends - 1, "%02X", " ")
         warn(f, say("longer_server_id", { value = run, server_id = shown, run = names[b[ends]] }))
       end
     end

@@ -9,7 +9,7 @@ local UNMATCHED = say("unmatched", {}) -- (data/modbus.toml [texts])
 local function add_window(t, tvb, f, field, what, value)
   local entry = f.kind ~= EXCEPTION and DATA.rules.by_code[f.kind][f.fn]
   local rule = entry and DATA.rules.lift[entry.rule]
-  local place = rule and type(rule[what]) == "string" and fields_at(f.kind, f.fn)[rule[what]]
+  local place = rule and type(rule[what]) == "string" and DATA.field_places[entry.layout][rule[what]]
   if not (place and place.size) then return t:add(field, tvb:range(f.at, 0), value):set_generated() end
   local item, name = t:add(field, frame_range(tvb, f, place.at, place.size), value), rule[what]
   -- (named as vw3-decode -V names the PDU field where it is not the window's own: FC23's `Read start`)

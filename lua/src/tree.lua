@@ -151,12 +151,10 @@ end
 -- the window, registers, bits, objects). Read from the frame's bytes when shown: a record keeps no fields.
 local LAYOUTS, PARTS = DATA.rules.layouts, DATA.rules.parts
 
--- b[first..last] as text where every byte is printable ASCII (as vw3-decode shows a device's data), else nil.
-local function printable(b, first, last)
-  for k = first, last do
-    if b[k] < 32 or b[k] > 126 then return nil end
-  end
-  return string.char(table.unpack(b, first, last))
+-- The name of the layout a frame's kind and function code read ("raw": none).
+local function layout_of(kind, fn)
+  local entry = LAYOUT_OF[kind] and LAYOUT_OF[kind][fn]
+  return entry and entry.layout or "raw"
 end
 
 -- A counted field's bytes from its count's value (as codegen/decode_lua.py's _size_of; odd: the byte an
@@ -215,7 +213,7 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
         elseif kind == "odd" then
           t:add(pf[shown[1]], frame_range(tvb, f, at, 1), b[at])
         elseif kind == "text" then -- (as text where every byte is printable ASCII, as vw3-decode)
-          local text = printable(b, at, at + size - 1)
+          local text = printable_ascii(b, at, at + size - 1)
           if text then t:add(pf[shown[1]], frame_range(tvb, f, at, size), text)
           else t:add(pf[shown[2]], frame_range(tvb, f, at, size)) end
         else
@@ -241,12 +239,11 @@ end
 -- The PDU's fields of a frame that parsed (not an exception's: its code is shown as such), under `t`; an
 -- FC22's register after them.
 local function add_pdu(t, tvb, f, stop)
-  local entry = LAYOUT_OF[f.kind] and LAYOUT_OF[f.kind][f.fn]
-  local layout = LAYOUTS[entry and entry.layout or "raw"]
-  if f.malformed or #layout == 0 then return end
+  local name = layout_of(f.kind, f.fn)
+  if f.malformed or #LAYOUTS[name] == 0 then return end
   local b = frame_bytes(f, tvb)
-  add_shape(t, tvb, f, b, layout, 2, stop)
-  if MASK_WRITES[f.fn] then add_register(t, tvb, f, mask_register(f, b, DATA.field_places[entry.layout]), nil, true) end
+  add_shape(t, tvb, f, b, LAYOUTS[name], 2, stop)
+  if MASK_WRITES[f.fn] then add_register(t, tvb, f, mask_register(f, b, DATA.field_places[name]), nil, true) end
 end
 
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than
@@ -261,19 +258,10 @@ local DECIMAL = made_once(function(number) return format("%d", number) end)
 -- FORMS[fn][kind]: the form as a function of the frame (below: DATA.info_forms; nil for the usual codes).
 local INFO = DATA.fields.info
 local MAX_DATA_BYTES, MAX_FIFO_VALUES = INFO.max_data_bytes, INFO.max_fifo_values
-local HEX_BYTE = made_once(function(value) return format("%02x", value) end)
 -- Tables the texts are put together in, reused (Info texts are made for every record shown: a table each
 -- time costs more, in the collector, than the text).
-local HEX, VALUES, GROUP = {}, {}, {}
+local VALUES, GROUP = {}, {}
 
--- Where each field of a layout begins (from the slave byte, 0) and its size, up to the first field of no
--- fixed size (DATA.field_places, codegen/display_lua.py); fields_at: those of the layout a frame's kind and
--- function code read.
-local FIELD_AT = DATA.field_places
-local function fields_at(kind, fn)
-  local entry = LAYOUT_OF[kind] and LAYOUT_OF[kind][fn]
-  return FIELD_AT[entry and entry.layout or "raw"]
-end
 
 -- describe._data: FC8's data (b[first..last]), ` = 7` for a word, ` data 0a0b…` (its first MAX_DATA_BYTES
 -- bytes, then how many more) for other data, nothing for none.
@@ -281,10 +269,9 @@ local function data_text(b, first, last)
   local size = last - first + 1
   if size == 2 then return " = " .. DECIMAL[b[first] * 256 + b[first + 1]] end
   if size <= 0 then return "" end
-  local shown = size < MAX_DATA_BYTES and size or MAX_DATA_BYTES
-  for k = 1, shown do HEX[k] = HEX_BYTE[b[first + k - 1]] end
-  if size <= MAX_DATA_BYTES then return " data " .. concat(HEX, "", 1, shown) end
-  return " data " .. concat(HEX, "", 1, shown) .. "… (+" .. count_text(size - MAX_DATA_BYTES, "byte") .. ")"
+  local data = " data " .. hex_of(b, first, first + math.min(size, MAX_DATA_BYTES) - 1, "%02x", "")
+  if size <= MAX_DATA_BYTES then return data end
+  return data .. "… (+" .. count_text(size - MAX_DATA_BYTES, "byte") .. ")"
 end
 
 -- describe._fifo: `:` and the first MAX_FIFO_VALUES of `count` values from b[first] (none past b[last]),
@@ -334,15 +321,14 @@ function BY_NAME.report_server_id(f, b, base)
   if f.kind == REQUEST or b[base + 2] == 0 then return "" end -- (byte count 0: no server id)
   if b[base + 2] < 2 then return "server id " .. DECIMAL[b[base + 3]] end -- (byte count 1: the id alone)
   local count, run = b[base + 2] - 2, b[base + 4]
-  local text = count > 0 and printable(b, base + 5, base + 4 + count)
+  local text = count > 0 and printable_ascii(b, base + 5, base + 4 + count)
   local data = text and python_repr(text) or count_text(count, "byte")
   return "server id " .. DECIMAL[b[base + 3]] .. ", run " .. (RUN_INDICATOR[run] or DECIMAL[run]) .. ", " .. data
 end
 
 -- describe._file_record: `2 record group(s)`, the sub-requests, sub-responses or records its byte count holds.
 function BY_NAME.file_record(f, b, base)
-  local entry = LAYOUT_OF[f.kind][f.fn]
-  local field = LAYOUTS[entry.layout][2] -- (after the byte count: the records)
+  local field = LAYOUTS[layout_of(f.kind, f.fn)][2] -- (after the byte count: the records)
   local part, at = PARTS[field.part], base + 3
   local last, groups = at + b[base + 2], 0
   while at < last do
