@@ -407,6 +407,8 @@ def _decode_inputs(
             # no ==> header over nothing; with -Y none over a file with no match
             sinks.output.new_input(title if sinks.show else None, held=sinks.predicate is not None)
             sinks.clock.units = units  # tshark's precision: 9 decimals of a nanosecond pcap
+            if sinks.watch is not None:
+                sinks.watch.clock.units = units  # (its lines' column, as the summary's)
             sinks.restart_times()
             if sinks.pcap is not None:
                 keep_interface(sinks, args, env, path, source_format, line, bus)

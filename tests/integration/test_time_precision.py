@@ -98,6 +98,19 @@ def test_standard_input_with_mode_given(tmp_path: Path, monkeypatch: pytest.Monk
     assert [line.split()[1] for line in out.splitlines()] == ["0.000000000", "0.012999000"]
 
 
+@BOTH
+def test_watch_lines_at_the_capture_precision(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    path = tmp_path / "ns.pcap"
+    out = struct.pack("<IHHiIII", 0xA1B23C4D, 2, 4, 0, 0, 65535, 147)
+    for at, data in [(0, REQUEST), (10_000_001, ANSWER), (500_000_000, REQUEST), (510_000_123, rtu("01 03 02 0009"))]:
+        out += struct.pack("<IIII", START, at, len(data), len(data)) + data
+    path.write_bytes(out)
+    use_engine(monkeypatch, pure)
+    status, text, err = run_cli(["--watch", "0", str(path)])
+    assert (status, err) == (0, "")
+    assert text.splitlines()[-1] == "     4  0.510000123   1 0 7 -> 9"  # (was 0.510000)
+
+
 RESOLUTIONS = [0, 1, 2, 3, 4, 6, 7, 9, 0x80 | 3, 0x80 | 4, 0x80 | 10, 0x80 | 20, 0x80 | 29, 0x80 | 30]
 
 
