@@ -76,6 +76,15 @@ static int set_attr(PyObject *o, const char *name, PyObject *value) {
     return status;
 }
 
+/* o.name += more (nothing for 0): 0, or -1 with an exception set. */
+static int attr_add(PyObject *o, const char *name, unsigned long long more) {
+    PyObject *had = more ? PyObject_GetAttrString(o, name) : NULL, *n = had ? PyLong_FromUnsignedLongLong(more) : NULL;
+    int status = !more ? 0 : set_attr(o, name, n ? PyNumber_Add(had, n) : NULL);
+    Py_XDECREF(had);
+    Py_XDECREF(n);
+    return status;
+}
+
 /* The scalars of the collector and of health kept here while the engine runs: taken when a run starts and
  * after a Python method changed them (pull), given back before one is called and when the run ends (push). */
 enum { AS_TIME, AS_FLOAT, AS_FLAG, AS_COUNT }; /* AS_FLAG: None, False or True as -1, 0 or 1 */
@@ -132,16 +141,10 @@ static int report_push(Report *r, int counts) {
         if (o != Py_None && set_attr(o, scalars[k].name, scalar_value(r, k)) < 0) return -1;
     }
     if (!counts) return 0;
-    const char *names[2] = {"series_dropped", "values"};
     for (size_t k = 0; k <= r->trends.count; k++) { /* k == count: the collector's series_dropped */
         Trend *t = k < r->trends.count ? (Trend *)r->trends.items + k : NULL;
         unsigned long long *n = t != NULL ? &t->values : &r->dropped;
-        if (!*n) continue;
-        PyObject *o = t != NULL ? t->series : r->collector, *had = PyObject_GetAttrString(o, names[t != NULL]);
-        PyObject *more = PyLong_FromUnsignedLongLong(*n), *sum = had && more ? PyNumber_Add(had, more) : NULL;
-        Py_XDECREF(had);
-        Py_XDECREF(more);
-        if (set_attr(o, names[t != NULL], sum) < 0) return -1;
+        if (attr_add(t != NULL ? t->series : r->collector, t != NULL ? "values" : "series_dropped", *n) < 0) return -1;
         *n = 0;
     }
     return 0;
@@ -256,15 +259,6 @@ static void trend_release(Trend *t) {
     Py_CLEAR(t->columns);
 }
 
-/* series.values += more: 0, or -1 with an exception set. */
-static int series_values_add(PyObject *series, unsigned long long more) {
-    PyObject *had = more ? PyObject_GetAttrString(series, "values") : NULL, *n = had ? PyLong_FromUnsignedLongLong(more) : NULL;
-    int status = !more ? 0 : set_attr(series, "values", n ? PyNumber_Add(had, n) : NULL);
-    Py_XDECREF(had);
-    Py_XDECREF(n);
-    return status;
-}
-
 /* A new device for this slave (its namer another: profile `auto`): its trends forgotten, their values counted
  * into their series, which the collector may have moved to other tables (ReportCollector.rehomed): the next
  * value finds its series again; its values are read again (the points cached with the old namer not asked).
@@ -282,7 +276,7 @@ static int report_device(Report *r, Slave *s, int slave) {
             continue;
         }
         if ((int)PARAM_SLAVE(t->key) != slave) status = -1;
-        else if (t->columns != NULL && status == 0) status = series_values_add(t->series, t->values);
+        else if (t->columns != NULL && status == 0) status = attr_add(t->series, "values", t->values);
         trend_release(t);
     }
     if (held) { /* (none of the slave's: the table stays as it is) */

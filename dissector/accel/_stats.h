@@ -283,32 +283,22 @@ static void poll_fail(Stats *st, const PollKey *key) {
     if (p != NULL) p->failed++;
 }
 
-/* pollcycle.request_key of a request the engine shows, from its bytes where the protocol table's
- * request layout (_tables.h) puts its start, quantity and write window; FC8 by its sub-function. */
-static void request_key(const uint8_t *f, PollKey *key) {
-    int function = f[1];
-    const Lift *L = &request_lift[handled_index(function)];
-    *key = (PollKey){{f[0], (uint32_t)function}, 2};
-    if (L->start_at) {
-        key->fields[2] = word(f + L->start_at);
-        key->fields[3] = L->quantity_at ? word(f + L->quantity_at) : 1;
-        key->size = 4;
-        if (!L->write_quantity_at) return;
-        key->fields[4] = word(f + L->write_start_at);
-        key->fields[5] = word(f + L->write_quantity_at);
-        key->size = 6;
-    } else if (rules[handled_index(function)].special) { /* FC8: keyed by its sub-function, the data's first word */
-        key->fields[2] = word(f + 2);
-        key->size = 3;
-    }
+/* pollcycle.request_key of a request the engine shows: its window and the window it writes (FC23) as lift_frame
+ * read them by the protocol table's request layout; FC8 by its sub-function, the data's first word. */
+static void request_key(const uint8_t *f, const Lifted *r, PollKey *key) {
+    const Lift *L = &request_lift[handled_index(f[1])];
+    uint32_t fields[6] = {f[0], f[1], L->special ? word(f + 2) : r->start, r->quantity, r->values.start, r->values.count};
+    *key = (PollKey){{0}, L->special ? 3 : !L->start_at ? 2 : L->write_quantity_at ? 6 : 4}; /* (the others 0) */
+    memcpy(key->fields, fields, key->size * sizeof *fields);
 }
 
 /* What StatsCollector.add and BusTiming.add do with a transaction the engine shows: the request (unanswered
- * when `af` is NULL), then its normal answer or exception. `writes`: the request's registers (FC6, 16,
- * 23), `reads`: the answer's values (FC3, 4, 23); `base`: the stream offset of b[0]. */
+ * when `af` is NULL; as lifted: `request`, its registers written: FC6, 16, 23), then its normal answer or
+ * exception. `reads`: the answer's values (FC3, 4, 23); `base`: the stream offset of b[0]. */
 static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameRef *qf, const FrameRef *af,
-                             const Words *writes, const Words *reads, unsigned long long number, long long base) {
+                             const Lifted *request, const Words *reads, unsigned long long number, long long base) {
     const uint8_t *q = b + qf->at, *answer = af != NULL ? b + af->at : NULL;
+    const Words *writes = request->values.values != NULL ? &request->values : NULL;
     int slave = q[0], function = q[1];
     Words written; /* the writes a normal answer confirms (data/modbus.toml [confirm]): counted and drawn */
     const Words *confirmed =
@@ -334,7 +324,7 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
             return -1;
     }
     PollKey key;
-    request_key(q, &key);
+    request_key(q, request, &key);
     int owner = slave << 8 | function;
     st->frames += answer != NULL ? 2 : 1;
     if (tally_add(st->tallies, TALLY_COUNTS, owner, COUNT_REQUESTS, 1) < 0 ||

@@ -526,6 +526,17 @@ static Py_ssize_t crc_next(CrcScan *scan) {
     return 0;
 }
 
+/* RtuFramer._match's interpretations of a code, in its order (an exception's; else the awaited answer's first when
+ * `expected`, the other, the request by its quantity where that differs): how many, in rules[]; 0: unknown. */
+static int layouts(int function, int expected, const LengthRule *rules[3]) {
+    int k = known_slot[function & 0x7F];
+    if (k < 0) return 0;
+    rules[0] = function & 0x80 ? &exception_rule : &known_rule[k][expected];
+    rules[1] = &known_rule[k][!expected];
+    rules[2] = &known_rule[k][LAYOUT_BY_QUANTITY];
+    return function & 0x80 ? 1 : rules[2]->special ? 3 : 2;
+}
+
 /* A length rule at i with the bytes up to n, as the framer weighs one interpretation (RtuFramer
  * _valid_frame_at, _match): 1 it checks out, 0 it does not apply or fails its CRC, 2 it waits for more
  * bytes, -1 a CRC scan from *length bytes (*length: its length, -1 the bytes that give it). */
@@ -550,13 +561,8 @@ static int crosses_framed_record(const Engine *e, const uint8_t *b, Py_ssize_t i
  * bytes needed to know. The interpretations are the framer's, in its order for the expectation. */
 static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize_t n) {
     if (n - j < MIN_ADU) return -1;
-    int slave = b[j], function = b[j + 1]; /* any address: 248..255 are framed too (reserved) */
-    int k = known_slot[function & 0x7F];
-    if (k < 0) return 0;
-    int expected = slave == e->expect_slave && function == e->expect_function;
-    const LengthRule *rules[3] = {&known_rule[k][expected], &known_rule[k][!expected], &known_rule[k][LAYOUT_BY_QUANTITY]};
-    int count = function & 0x80 ? 1 : rules[2]->special ? 3 : 2;
-    if (function & 0x80) rules[0] = &exception_rule;
+    const LengthRule *rules[3]; /* (any address: 248..255 are framed too, reserved) */
+    int count = layouts(b[j + 1], b[j] == e->expect_slave && b[j + 1] == e->expect_function, rules);
     int undecided = 0; /* a CRC scan found nothing yet, but a longer frame may still arrive */
     Py_ssize_t length;
     for (int r = 0; r < count; r++) {
@@ -587,11 +593,8 @@ static Py_ssize_t record_end(Timeline *t, Py_ssize_t j, Py_ssize_t n) {
  * begins (a code without a length rule: its CRC checks there). */
 static int ends_record(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize_t n) {
     Timeline *t = (Timeline *)&e->tl; /* (its cursor only moves) */
-    int k = known_slot[b[j + 1] & 0x7F];
-    if (k < 0) return 0;
-    const LengthRule *rules[3] = {&known_rule[k][0], &known_rule[k][1], &known_rule[k][LAYOUT_BY_QUANTITY]};
-    int count = b[j + 1] & 0x80 ? 1 : rules[2]->special ? 3 : 2;
-    if (b[j + 1] & 0x80) rules[0] = &exception_rule;
+    const LengthRule *rules[3];
+    int count = layouts(b[j + 1], 0, rules);
     Py_ssize_t length;
     for (int r = 0; r < count; r++) {
         int found = rule_check(rules[r], b, j, n, &length);
@@ -908,11 +911,6 @@ static int confirmed_writes(const uint8_t *answer, const Words *writes, Words *o
     return 0;
 }
 
-#include "_stats.h"
-#include "_columns.h" /* --report's pixel columns of a series */
-#include "_report.h"  /* --report fed by the engine */
-
-/* ---- one transaction ---------------------------------------------------------------------------- */
 /* A frame as its lifting rule reads it (lift_frame). */
 typedef struct {
     unsigned start, quantity; /* its window (FC23: the read part) */
@@ -922,6 +920,11 @@ typedef struct {
     Py_ssize_t length;        /* the frame's, CRC included */
 } Lifted;
 
+#include "_stats.h"
+#include "_columns.h" /* --report's pixel columns of a series */
+#include "_report.h"  /* --report fed by the engine */
+
+/* ---- one transaction ---------------------------------------------------------------------------- */
 /* The spec's name of an FC8 sub-function, NULL: not defined by the spec. */
 static const char *subfunction_name(unsigned sub) { return sub < SUBFUNCTIONS ? subfunction_names[sub] : NULL; }
 
@@ -1267,7 +1270,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     }
     /* --stats: the transaction's counts once its lines are written (_stats.h) */
     if (written > 0 && s != NULL && e->stats != NULL &&
-        count_transaction((Stats *)e->stats, s, b, &q, answered ? &a : NULL, writes, &reads, e->count + 1,
+        count_transaction((Stats *)e->stats, s, b, &q, answered ? &a : NULL, &r, &reads, e->count + 1,
                           e->tl.active ? e->tl.base : 0) < 0)
         written = -1;
     if (written > 0) return taken(e, pos, &q, &a, answered);

@@ -14,13 +14,12 @@
  * a frame of its own) in *waits. */
 static int other_layouts(const Engine *e, int function, int kind, const uint8_t *b, Py_ssize_t i, Py_ssize_t m,
                          Py_ssize_t length, Py_ssize_t *shortest, int *waits) {
-    const LengthRule *rules = known_rule[known_slot[function]];
-    const LengthRule *others[2] = {&rules[kind != KIND_RESPONSE], &rules[LAYOUT_BY_QUANTITY]};
-    int valid = 0;
+    const LengthRule *rules[3];
+    int count = layouts(function, kind == KIND_RESPONSE, rules), valid = 0;
     *waits = 0;
-    for (int w = 0; w < (others[1]->special ? 2 : 1); w++) {
+    for (int w = 1; w < count; w++) {
         Py_ssize_t other;
-        int found = rule_check(others[w], b, i, m, &other);
+        int found = rule_check(rules[w], b, i, m, &other);
         if (found < 0) return -1;
         if (found == 2 && (other == -1 || other == length + 1) && !crosses_framed_record(e, b, i, other, m))
             *waits = 1;
