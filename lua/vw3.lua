@@ -4253,7 +4253,7 @@ end
 
 -- CRC-16/MODBUS of bytes[from] .. bytes[to - 1], from the register l, h (its two bytes times 256, as TWO_LO
 -- and TWO_HI hold them: fewer operations a byte; 0xFF00, 0xFF00: a new CRC); returns the register so.
--- `read` reads the bytes sixteen a call (then two, one): unpack from a 0-based byte table,
+-- `read` reads the bytes sixteen a call (then four, two, one): unpack from a 0-based byte table,
 -- string.byte from a string. Called as crc_string_ok(bytes, n), without `read`: does a record's string
 -- (the whole frame, n bytes, 1-based) end in its CRC? (A record of one frame is checked before its byte
 -- table is needed, and a call of string.byte costs less than the table reads it saves.)
@@ -4281,7 +4281,15 @@ local function crc_string_ok(bytes, to, read, from, l, h)
     l, h = TWO_LO[w], TWO_HI[w]
     k = k + 16
   end
-  while k + 1 < to do
+  while k + 3 < to do
+    local a, b, c, d = read(bytes, k, k + 3)
+    local w = XOR8[h + b] * 256 + XOR8[l + a]
+    l, h = TWO_LO[w], TWO_HI[w]
+    w = XOR8[h + d] * 256 + XOR8[l + c]
+    l, h = TWO_LO[w], TWO_HI[w]
+    k = k + 4
+  end
+  if k + 1 < to then
     local a, b = read(bytes, k, k + 1)
     local w = XOR8[h + b] * 256 + XOR8[l + a]
     l, h = TWO_LO[w], TWO_HI[w]
