@@ -1450,6 +1450,7 @@ static PyMemberDef engine_members[] = {
     {"t15", T_DOUBLE, offsetof(Engine, tl.t15), 0, "the line's t1.5, s: a longer silence inside a frame warns"},
     {"timeout", T_DOUBLE, offsetof(Engine, tl.timeout), 0, "the pairing timeout, s; < 0: none"},
     {"clock_format", T_INT, offsetof(Engine, tl.clock), 0, "the time column: 0 -t r, 1 -t d or dd"},
+    {"clock_nanos", T_INT, offsetof(Engine, tl.nanos), 0, "1: the time column in ns (9 decimals), 0: in us"},
     {"has_first", T_INT, offsetof(Engine, tl.refs.has_first), 0, "the time column has its first timed item"},
     {"first_ns", T_LONGLONG, offsetof(Engine, tl.refs.first_ns), 0, "its time, ns"},
     {"has_previous", T_INT, offsetof(Engine, tl.refs.has_previous), 0, "it has a previous timed item"},

@@ -31,6 +31,7 @@ typedef struct {
     /* Settings (set_timing): the line's character time and t1.5, the pairing timeout (< 0: none). */
     double char_time, t15, timeout;
     int clock;               /* timedpath.CLOCKS: CLOCK_RELATIVE (-t r), else deltas (-t d, dd) */
+    int nanos;               /* the column in ns, 9 decimals (a nanosecond capture), else in us */
     ClockRefs refs;
 } Timeline;
 
@@ -167,7 +168,15 @@ static void out_time_column(Out *o, Timeline *t, int timed, long long ns) {
     refs->has_previous = 1;
     refs->previous_ns = ns;
     out_put(o, " ", 1);
-    out_fixed(o, stamp_seconds(ns, since), 6, 12);
+    if (t->nanos) { /* from the integers, as render/timefmt.py Clock._since: a double keeps no 9 decimals */
+        long long d = ns - since;
+        char text[64];
+        int n = fixed_digits(text, (unsigned long long)(d < 0 ? -d : d), 9, d < 0);
+        for (int pad = 12 - n; pad > 0; pad--) out_put(o, " ", 1);
+        out_put(o, text, (size_t)n);
+    } else {
+        out_fixed(o, stamp_seconds(ns, since), 6, 12);
+    }
     out_put(o, " ", 1);
 }
 

@@ -22,7 +22,7 @@ from dissector.accel.fastsummary import NEED, PythonSide, built, forget_changed,
 from dissector.accel.records import Block
 from dissector.model import Chunk, Item, Stamp
 from dissector.pipeline import Dissector
-from dissector.render.timefmt import Clock
+from dissector.render.timefmt import NS as NANOS, Clock
 
 CLOCKS = {"r": 0, "d": 1, "dd": 1}  # the time columns the engine writes (timefmt.Clock.text)
 
@@ -47,6 +47,7 @@ class TimedPath:
         self.engine = make_engine(annotator, shown, self.pairer)
         timing = self.framer.timing
         self.engine.set_timing(timing.char_time, timing.max_silence, timeout, CLOCKS[clock.format])
+        self.engine.clock_nanos = int(clock.units == NANOS)  # (a nanosecond capture's 9 decimals: timefmt.py)
         self.write_items = write_items
         self.side = PythonSide(dissector, write_items)  # the Python stages' steps over the stream
         self.write_lines = write_lines

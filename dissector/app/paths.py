@@ -7,7 +7,7 @@ from typing import Any
 
 from dissector.model import Chunk, Item
 from dissector.pipeline import Dissector
-from dissector.render.pcapwriter import MICROS
+from dissector.render.pcapwriter import MICROS, NANOS
 
 Fix = Callable[[list[Item]], list[Item]] | None
 
@@ -70,9 +70,9 @@ def decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, dissec
     if mode == "rtu" and timed and fix is None:
         from dissector.accel import framespath, timedpath
 
-        # (the engine writes the column in us, rounded: a capture's in other units, cut to its precision as
+        # (the engine writes the column in us or ns: a capture's in other units, cut to its precision as
         # tshark's, are Python's lines)
-        if (sinks.plain_summary_only and sinks.clock.units in (None, MICROS)
+        if (sinks.plain_summary_only and sinks.clock.units in (None, MICROS, NANOS)
                 and timedpath.summarize_input(chunks, dissector, sinks, annotate, warn)):
             return  # pcap, pcapng: the compiled path
         if counted_only(sinks) and timedpath.count_input(chunks, dissector, sinks, annotate, warn):

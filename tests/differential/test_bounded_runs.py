@@ -45,11 +45,11 @@ def test_a_record_with_a_good_crc_is_a_frame(tmp_path: Path, monkeypatch: pytest
     capture = tmp_path / "plus.pcap"
     write_pcap(capture, [(ASK_PLUS, T0), (PLUS, T0 + 10**8)])
     out, verbose = _lines(capture, monkeypatch)
-    assert out == [f"     1     0.000000   {ASKED}", "     2     0.100000   " + LONG.format("1, 100.0 ms")]
+    assert out == [f"     1  0.000000000   {ASKED}", "     2  0.100000000   " + LONG.format("1, 100.0 ms")]
     assert "    Warning: frame length 118 disagrees with the spec's layout (8 bytes), its CRC good" in verbose
     write_pcap(capture, [(EXCEPTION_0, T0)])
     out, _ = _lines(capture, monkeypatch)
-    assert out == [f"     1     0.000000  {FUNCTION_0}"]
+    assert out == [f"     1  0.000000000  {FUNCTION_0}"]
 
 
 def test_raw_bytes_between_frames(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -84,7 +84,7 @@ def test_a_run_crosses_no_read_end(tmp_path: Path, monkeypatch: pytest.MonkeyPat
     write_pcap(capture, [(ASK_PLUS, T0), (PLUS[:50], start), (PLUS[50:100], start + 50 * CHAR_NS),
                          (PLUS[100:], start + 100 * CHAR_NS), (POLL, T0 + 10**9)])
     out, _ = _lines(capture, monkeypatch)
-    assert out[1] == ("     2     0.010000   - noise     118 bytes of noise at offset 8: 01 08 00 15 00 03 00 00 00 00"
+    assert out[1] == ("     2  0.010000000   - noise     118 bytes of noise at offset 8: 01 08 00 15 00 03 00 00 00 00"
                       " 00 00 00 00 00 00…")
 
 

@@ -15,8 +15,8 @@ from test_timed_summary import assert_same, write_pcap
 
 ONE, ONE_ANSWER = rtu("01 03 0000 0001"), rtu("01 03 02 0007")
 T0 = 1_700_000_000 * 10**9
-READ = "     1     0.000000   1 request   Read Holding Registers 0"
-NOISE = "     2     1.000000   - noise     5 bytes of noise at offset 8: 01 03 00 00 00"
+READ = "     1  0.000000000   1 request   Read Holding Registers 0"
+NOISE = "     2  1.000000000   - noise     5 bytes of noise at offset 8: 01 03 00 00 00"
 
 
 def _outputs(capture: Path, monkeypatch: pytest.MonkeyPatch) -> tuple[list[str], list[str]]:
@@ -50,7 +50,7 @@ def test_a_record_of_a_request_s_first_bytes(tmp_path: Path, monkeypatch: pytest
     assert out == [
         f"{READ} [no response]  CRC ok",
         NOISE,
-        "     3     2.000000   1 request   Read Holding Registers 0  CRC ok",
-        "     4     2.010000   1 response  Read Holding Registers 0: 0=7 [#3, 10.0 ms]  CRC ok",
+        "     3  2.000000000   1 request   Read Holding Registers 0  CRC ok",
+        "     4  2.010000000   1 response  Read Holding Registers 0: 0=7 [#3, 10.0 ms]  CRC ok",
     ]
     assert "    Reason: a silence cuts a request (5 of 8 bytes)" in verbose  # (as live says: test_silence_cut.py)

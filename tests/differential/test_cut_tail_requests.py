@@ -20,7 +20,7 @@ from test_timed_summary import assert_same, write_pcap
 
 POLL, ANSWER = rtu("0C 03 20D0 0003"), rtu("0C 03 06 0001 0002 0003")
 T0 = 1_700_000_000 * 10**9
-READ = "     1     0.000000  12 request   Read Holding Registers 8400..8402 (3)"
+READ = "     1  0.000000000  12 request   Read Holding Registers 8400..8402 (3)"
 UNKNOWN = ("[the capture ends 1000.0 ms after the request, within the 1000 ms timeout: not known whether it"
            " was answered]")
 
@@ -43,7 +43,7 @@ def test_the_next_poll_cut_after_an_unanswered_one(tmp_path: Path, monkeypatch: 
     capture = tmp_path / "cut.pcap"
     write_pcap(capture, [(POLL, T0), (POLL[:4], T0 + 10**9)])
     out, verbose = _lines(capture, monkeypatch)
-    noise = "     2     1.000000   - noise     4 bytes of noise at offset 8: 0c 03 20 d0"
+    noise = "     2  1.000000000   - noise     4 bytes of noise at offset 8: 0c 03 20 d0"
     assert out == [f"{READ} {UNKNOWN}  CRC ok", noise]
     assert "    Reason: the capture ends inside a request (4 of 8 bytes)" in verbose
 
@@ -65,7 +65,7 @@ def test_an_answer_cut_stays_one(tmp_path: Path, monkeypatch: pytest.MonkeyPatch
     write_pcap(capture, [(POLL, T0), (ANSWER[:5], T0 + 10**7)])
     out, verbose = _lines(capture, monkeypatch)
     cut = "the capture ends inside the response (5 of 11 bytes)"
-    noise = "     2     0.010000   - noise     5 bytes of noise at offset 8: 0c 03 06 00 01"
+    noise = "     2  0.010000000   - noise     5 bytes of noise at offset 8: 0c 03 06 00 01"
     assert out == [f"{READ} [{cut}]  CRC ok", noise]
     assert f"    Reason: {cut}" in verbose
     capture.write_bytes(POLL + bytes.fromhex("0C 83"))
@@ -77,7 +77,7 @@ def test_the_next_poll_after_an_answer_is_no_answer(tmp_path: Path, monkeypatch:
     capture = tmp_path / "answered.pcap"
     write_pcap(capture, [(POLL, T0), (ANSWER, T0 + 10**7), (POLL[:4], T0 + 10**9)])
     out, verbose = _lines(capture, monkeypatch)
-    assert out[2] == "     3     1.000000   - noise     4 bytes of noise at offset 19: 0c 03 20 d0"
+    assert out[2] == "     3  1.000000000   - noise     4 bytes of noise at offset 19: 0c 03 20 d0"
     # (nothing awaited: no reading of an answer; the request's, from the answer's end: framing/bounded.py)
     assert "    Reason: the capture ends inside a request (4 of 8 bytes)" in verbose
 

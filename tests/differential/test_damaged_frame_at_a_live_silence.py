@@ -33,7 +33,7 @@ def test_live_shows_the_damaged_request_as_the_file_does(after: float, pure: boo
     lines = live(tape, pure, "-n")
     assert lines[2].endswith(SHOWN) and len(lines) == 5, lines
     records = [(data, T0 + round((at - 100.0) * 1000) * 10**6) for data, at in reads]
-    assert decode(records, "pcap", pure, tmp_path)[2] == f"     3     0.500000   {SHOWN}"
+    assert decode(records, "pcap", pure, tmp_path)[2] == f"     3  0.500000000   {SHOWN}"
 
 
 @ENGINES

@@ -16,7 +16,7 @@ import pytest
 from helpers import rtu
 from live_tape import tape_of
 from test_silence_cut import live, noise_reasons
-from test_silence_cut_files import ENGINES, FORMATS, decode
+from test_silence_cut_files import ENGINES, FORMATS, column, decode
 
 POLL, ANSWER = rtu("01 03 0000 0002"), rtu("01 03 04 0001 0002")
 T0 = 1_700_000_000 * 10**9
@@ -38,7 +38,7 @@ def test_a_glitch_run_before_a_silence(glitch: str, form: str, pure: bool, tmp_p
     assert noise_reasons(decode(records, form, pure, tmp_path, "--json")) == ["too short for a frame"]
     size = len(glitch) // 2
     shown = f"{size} byte{'s' if size > 1 else ''} of noise at offset 17: {bytes.fromhex(glitch).hex(' ')}"
-    assert decode(records, form, pure, tmp_path)[2] == f"     3     0.500000   - noise     {shown}"
+    assert decode(records, form, pure, tmp_path)[2] == f"     3 {column(form, 0.5)}   - noise     {shown}"
     verbose = decode(records, form, pure, tmp_path, "-V")
     at = verbose.index(f"Item 3: noise, {size} byte{'s' if size > 1 else ''} at offset 17")
     assert verbose[at + 1 : at + 3] == [f"    {shown}", "    Reason: too short for a frame"]

@@ -32,9 +32,9 @@ def _run(tmp_path: Path, records: list[tuple[bytes, int]], monkeypatch: pytest.M
 def test_noise_records_a_second_apart(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     out, bus = _run(tmp_path, [(NOISE, 0), (NOISE, 10**9), (NOISE, 2 * 10**9)], monkeypatch)
     assert out == [
-        f"     1     0.000000   {NOISE_LINE.format(0)}",
-        f"     2     1.000000   {NOISE_LINE.format(3)}",
-        f"     3     2.000000   {NOISE_LINE.format(6)}",
+        f"     1  0.000000000   {NOISE_LINE.format(0)}",
+        f"     2  1.000000000   {NOISE_LINE.format(3)}",
+        f"     3  2.000000000   {NOISE_LINE.format(6)}",
         f"vw3-decode: warning: {tmp_path / 'bus.pcap'}: no valid Modbus RTU frame in 9 bytes (every item is noise"
         " or a frame with a bad check): not a Modbus capture, or another format or line speed?",
     ]
@@ -52,10 +52,10 @@ def test_noise_without_a_silence_stays_one_run(tmp_path: Path, monkeypatch: pyte
     records = [(NOISE, 0), (NOISE, 2 * 10**6), (NOISE + REQUEST, 3 * 10**9), (NOISE, 4 * 10**9)]
     out, bus = _run(tmp_path, records, monkeypatch)
     assert out == [
-        "     1     0.000000   - noise     6 bytes of noise at offset 0: ff 00 aa ff 00 aa",
-        f"     2     3.000000   {NOISE_LINE.format(6)}",
-        "     3     3.000000  12 request   Read Holding Registers 8400..8402 (3) [the capture ends 1000.0 ms after the"
+        "     1  0.000000000   - noise     6 bytes of noise at offset 0: ff 00 aa ff 00 aa",
+        f"     2  3.000000000   {NOISE_LINE.format(6)}",
+        "     3  3.000000000  12 request   Read Holding Registers 8400..8402 (3) [the capture ends 1000.0 ms after the"
         " request, within the 1000 ms timeout: not known whether it was answered]  CRC ok",
-        f"     4     4.000000   {NOISE_LINE.format(17)}",
+        f"     4  4.000000000   {NOISE_LINE.format(17)}",
     ]
     assert bus[0] == "load: 0.3 %"

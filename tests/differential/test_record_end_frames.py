@@ -24,12 +24,12 @@ RAW = "8400=32768 8401=3 8402=2"  # (two good answers only: no profile chosen fo
 def test_a_scanned_frame_ends_with_its_record(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     records = [(REQUEST, 0.0), (ANSWER, 0.01), (FC8, 2.0), (LONGER[8:] + REQUEST, 2.0), (ANSWER, 2.06)]
     assert _lines(tmp_path, records, monkeypatch) == [
-        f"     1     0.000000  {READ}  CRC ok",
-        f"     2     0.010000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#1, 10.0 ms]  CRC ok",
-        "     3     2.000000  12 request   Diagnostics 00h Return Query Data = 4660 [no response]  CRC ok",
-        "     4     2.000000   - noise     4 bytes of noise at offset 27: ff ff 01 b0",
-        f"     5     2.000000  {READ}  CRC ok",
-        f"     6     2.060000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#5, 60.0 ms]  CRC ok",
+        f"     1  0.000000000  {READ}  CRC ok",
+        f"     2  0.010000000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#1, 10.0 ms]  CRC ok",
+        "     3  2.000000000  12 request   Diagnostics 00h Return Query Data = 4660 [no response]  CRC ok",
+        "     4  2.000000000   - noise     4 bytes of noise at offset 27: ff ff 01 b0",
+        f"     5  2.000000000  {READ}  CRC ok",
+        f"     6  2.060000000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#5, 60.0 ms]  CRC ok",
     ]
 
 
@@ -39,11 +39,11 @@ def test_an_answer_with_a_bad_crc(tmp_path: Path, monkeypatch: pytest.MonkeyPatc
     records = [*first, (REQUEST, 2.0), (ANSWER, 2.01)]
     bad = f"{RAW} [#1, 0.0 ms]" if together else f"{RAW} [#1, 10.0 ms]"
     assert _lines(tmp_path, records, monkeypatch) == [
-        f"     1     0.000000  {READ}  CRC ok",
-        f"     2     {'0.000000' if together else '0.010000'}  12 response  Read Holding Registers 8400..8402 (3): {bad}"
+        f"     1  0.000000000  {READ}  CRC ok",
+        f"     2  {'0.000000000' if together else '0.010000000'}  12 response  Read Holding Registers 8400..8402 (3): {bad}"
         "  CRC BAD (received 0xE517, expected 0xE417)",
-        f"     3     2.000000  {READ}  CRC ok",
-        f"     4     2.010000  12 response  Read Holding Registers 8400..8402 (3): {RAW} [#3, 10.0 ms]  CRC ok",
+        f"     3  2.000000000  {READ}  CRC ok",
+        f"     4  2.010000000  12 response  Read Holding Registers 8400..8402 (3): {RAW} [#3, 10.0 ms]  CRC ok",
     ]
 
 
@@ -56,10 +56,10 @@ def test_a_record_that_is_a_damaged_frame_after_the_engine_s_frames(tmp_path: Pa
                (request[6:] + ANSWER, 1.01)]
     alone = "[no request] [response without a matching request in the capture]"
     assert _lines(tmp_path, records, monkeypatch) == [
-        f"     1     0.000000  {READ}  CRC ok",
-        f"     2     0.010000  12 response  Read Holding Registers 8400..8402 (3): {RAW} [#1, 10.0 ms]  CRC ok",
-        f"     3     1.000000  12 response  Read Holding Registers (2): ?+0=3075 ?+1=0 {alone}"
+        f"     1  0.000000000  {READ}  CRC ok",
+        f"     2  0.010000000  12 response  Read Holding Registers 8400..8402 (3): {RAW} [#1, 10.0 ms]  CRC ok",
+        f"     3  1.000000000  12 response  Read Holding Registers (2): ?+0=3075 ?+1=0 {alone}"
         "  CRC BAD (received 0x0100, expected 0xA3D5)",
-        "     4     1.010000   - noise     2 bytes of noise at offset 28: 85 17",
-        f"     5     1.010000  12 response  Read Holding Registers (3): ?+0=32768 ?+1=3 ?+2=2 {alone}  CRC ok",
+        "     4  1.010000000   - noise     2 bytes of noise at offset 28: 85 17",
+        f"     5  1.010000000  12 response  Read Holding Registers (3): ?+0=32768 ?+1=3 ?+2=2 {alone}  CRC ok",
     ]

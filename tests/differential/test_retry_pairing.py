@@ -34,15 +34,15 @@ def pcap(tmp_path: Path, frames: list[tuple[float, bytes]], name: str = "retry.p
 HUNTER = [(0.0, HSP), (0.5, HSP), (0.512, HSP), (0.6, READ), (0.612, READ_ANSWER),
           (1.0, CHCF), (1.3, CHCF), (1.312, CHCF_WRITTEN)]
 HUNTER_LINES = (
-    "     1     0.000000  12 request   Write Single Register 3104 HSP=50.0 Hz [no response]  CRC ok\n"
-    "     2     0.500000  12 request   Write Single Register 3104 HSP=50.0 Hz  CRC ok\n"
-    "     3     0.512000  12 response  Write Single Register 3104 HSP=50.0 Hz [#2, 12.0 ms]  CRC ok\n"
-    "     4     0.600000  12 request   Read Holding Registers 3201..3202 (2)  CRC ok\n"
-    "     5     0.612000  12 response  Read Holding Registers 3201..3202 (2): ETA=Ready to switch on RFR=0.2 Hz"
+    "     1  0.000000000  12 request   Write Single Register 3104 HSP=50.0 Hz [no response]  CRC ok\n"
+    "     2  0.500000000  12 request   Write Single Register 3104 HSP=50.0 Hz  CRC ok\n"
+    "     3  0.512000000  12 response  Write Single Register 3104 HSP=50.0 Hz [#2, 12.0 ms]  CRC ok\n"
+    "     4  0.600000000  12 request   Read Holding Registers 3201..3202 (2)  CRC ok\n"
+    "     5  0.612000000  12 response  Read Holding Registers 3201..3202 (2): ETA=Ready to switch on RFR=0.2 Hz"
     " [#4, 12.0 ms]  CRC ok\n"
-    "     6     1.000000  12 request   Write Multiple Registers 8401: CHCF=IO (I/O profile) [no response]  CRC ok\n"
-    "     7     1.300000  12 request   Write Multiple Registers 8401: CHCF=IO (I/O profile)  CRC ok\n"
-    "     8     1.312000  12 response  Write Multiple Registers 8401 written [#7, 12.0 ms]  CRC ok\n"
+    "     6  1.000000000  12 request   Write Multiple Registers 8401: CHCF=IO (I/O profile) [no response]  CRC ok\n"
+    "     7  1.300000000  12 request   Write Multiple Registers 8401: CHCF=IO (I/O profile)  CRC ok\n"
+    "     8  1.312000000  12 response  Write Multiple Registers 8401 written [#7, 12.0 ms]  CRC ok\n"
 )
 
 
@@ -63,9 +63,9 @@ def test_within_the_timeout_the_identical_frame_is_the_answer(
     # (the timeout, 1 s, is what tells a retry: 500 ms is an answer's time then; no look-ahead)
     out, _ = assert_same([pcap(tmp_path, HUNTER[:3]), "--profile", "atv71"], monkeypatch)
     assert out == (
-        "     1     0.000000  12 request   Write Single Register 3104 HSP=50.0 Hz  CRC ok\n"
-        "     2     0.500000  12 response  Write Single Register 3104 HSP=50.0 Hz [#1, 500.0 ms]  CRC ok\n"
-        "     3     0.512000  12 request   Write Single Register 3104 HSP=50.0 Hz "
+        "     1  0.000000000  12 request   Write Single Register 3104 HSP=50.0 Hz  CRC ok\n"
+        "     2  0.500000000  12 response  Write Single Register 3104 HSP=50.0 Hz [#1, 500.0 ms]  CRC ok\n"
+        "     3  0.512000000  12 request   Write Single Register 3104 HSP=50.0 Hz "
         "[the capture ends before any response: not known whether it was answered]  CRC ok\n"
     )
 
@@ -78,17 +78,17 @@ def test_after_the_retry_answer_the_next_write_is_a_request(
               (1.0, HSP), (1.5, HSP), (2.0, HSP), (2.01, HSP), (2.1, READ), (2.11, READ_ANSWER)]
     out, _ = assert_same([pcap(tmp_path, frames), "--profile", "atv71", "--timeout", "0.4"], monkeypatch)
     assert out == (
-        "     1     0.000000  12 request   Write Single Register 3104 HSP=50.0 Hz [no response]  CRC ok\n"
-        "     2     0.500000  12 request   Write Single Register 3104 HSP=50.0 Hz  CRC ok\n"
-        "     3     0.512000  12 response  Write Single Register 3104 HSP=50.0 Hz [#2, 12.0 ms]  CRC ok\n"
-        "     4     0.600000  12 request   Write Single Register 3104 HSP=45.0 Hz  CRC ok\n"
-        "     5     0.612000  12 response  Write Single Register 3104 HSP=45.0 Hz [#4, 12.0 ms]  CRC ok\n"
-        "     6     1.000000  12 request   Write Single Register 3104 HSP=50.0 Hz [no response]  CRC ok\n"
-        "     7     1.500000  12 request   Write Single Register 3104 HSP=50.0 Hz [no response]  CRC ok\n"
-        "     8     2.000000  12 request   Write Single Register 3104 HSP=50.0 Hz  CRC ok\n"
-        "     9     2.010000  12 response  Write Single Register 3104 HSP=50.0 Hz [#8, 10.0 ms]  CRC ok\n"
-        "    10     2.100000  12 request   Read Holding Registers 3201..3202 (2)  CRC ok\n"
-        "    11     2.110000  12 response  Read Holding Registers 3201..3202 (2): ETA=Ready to switch on RFR=0.2 Hz"
+        "     1  0.000000000  12 request   Write Single Register 3104 HSP=50.0 Hz [no response]  CRC ok\n"
+        "     2  0.500000000  12 request   Write Single Register 3104 HSP=50.0 Hz  CRC ok\n"
+        "     3  0.512000000  12 response  Write Single Register 3104 HSP=50.0 Hz [#2, 12.0 ms]  CRC ok\n"
+        "     4  0.600000000  12 request   Write Single Register 3104 HSP=45.0 Hz  CRC ok\n"
+        "     5  0.612000000  12 response  Write Single Register 3104 HSP=45.0 Hz [#4, 12.0 ms]  CRC ok\n"
+        "     6  1.000000000  12 request   Write Single Register 3104 HSP=50.0 Hz [no response]  CRC ok\n"
+        "     7  1.500000000  12 request   Write Single Register 3104 HSP=50.0 Hz [no response]  CRC ok\n"
+        "     8  2.000000000  12 request   Write Single Register 3104 HSP=50.0 Hz  CRC ok\n"
+        "     9  2.010000000  12 response  Write Single Register 3104 HSP=50.0 Hz [#8, 10.0 ms]  CRC ok\n"
+        "    10  2.100000000  12 request   Read Holding Registers 3201..3202 (2)  CRC ok\n"
+        "    11  2.110000000  12 response  Read Holding Registers 3201..3202 (2): ETA=Ready to switch on RFR=0.2 Hz"
         " [#10, 10.0 ms]  CRC ok\n"
     )
 
@@ -98,13 +98,13 @@ def test_fc5_and_fc8_echo_retries(tmp_path: Path, monkeypatch: pytest.MonkeyPatc
     frames = [(0.0, coil), (0.5, coil), (0.51, coil), (0.6, echo), (1.1, echo), (1.11, echo), (1.2, echo)]
     out, _ = assert_same([pcap(tmp_path, frames), "--timeout", "0.4"], monkeypatch)
     assert out == (
-        "     1     0.000000   1 request   Write Single Coil 16 = ON [no response]  CRC ok\n"
-        "     2     0.500000   1 request   Write Single Coil 16 = ON  CRC ok\n"
-        "     3     0.510000   1 response  Write Single Coil 16 = ON [#2, 10.0 ms]  CRC ok\n"
-        "     4     0.600000   1 request   Diagnostics 00h Return Query Data = 42295 [no response]  CRC ok\n"
-        "     5     1.100000   1 request   Diagnostics 00h Return Query Data = 42295  CRC ok\n"
-        "     6     1.110000   1 response  Diagnostics 00h Return Query Data = 42295 [#5, 10.0 ms]  CRC ok\n"
-        "     7     1.200000   1 request   Diagnostics 00h Return Query Data = 42295 "
+        "     1  0.000000000   1 request   Write Single Coil 16 = ON [no response]  CRC ok\n"
+        "     2  0.500000000   1 request   Write Single Coil 16 = ON  CRC ok\n"
+        "     3  0.510000000   1 response  Write Single Coil 16 = ON [#2, 10.0 ms]  CRC ok\n"
+        "     4  0.600000000   1 request   Diagnostics 00h Return Query Data = 42295 [no response]  CRC ok\n"
+        "     5  1.100000000   1 request   Diagnostics 00h Return Query Data = 42295  CRC ok\n"
+        "     6  1.110000000   1 response  Diagnostics 00h Return Query Data = 42295 [#5, 10.0 ms]  CRC ok\n"
+        "     7  1.200000000   1 request   Diagnostics 00h Return Query Data = 42295 "
         "[the capture ends before any response: not known whether it was answered]  CRC ok\n"
     )
 
@@ -115,14 +115,14 @@ def test_a_request_sharing_its_record_and_a_late_answer_that_differs(
     frames = [(0.0, READ), (0.012, READ_ANSWER + HSP), (0.6, HSP), (0.612, HSP), (1.0, HSP_LOW), (1.5, HSP)]
     out, _ = assert_same([pcap(tmp_path, frames), "--profile", "atv71", "--timeout", "0.4"], monkeypatch)
     assert out == (
-        "     1     0.000000  12 request   Read Holding Registers 3201..3202 (2)  CRC ok\n"
-        "     2     0.012000  12 response  Read Holding Registers 3201..3202 (2): ETA=Ready to switch on RFR=0.2 Hz"
+        "     1  0.000000000  12 request   Read Holding Registers 3201..3202 (2)  CRC ok\n"
+        "     2  0.012000000  12 response  Read Holding Registers 3201..3202 (2): ETA=Ready to switch on RFR=0.2 Hz"
         " [#1, 12.0 ms]  CRC ok\n"
-        "     3     0.012000  12 request   Write Single Register 3104 HSP=50.0 Hz [no response]  CRC ok\n"
-        "     4     0.600000  12 request   Write Single Register 3104 HSP=50.0 Hz  CRC ok\n"
-        "     5     0.612000  12 response  Write Single Register 3104 HSP=50.0 Hz [#4, 12.0 ms]  CRC ok\n"
-        "     6     1.000000  12 request   Write Single Register 3104 HSP=45.0 Hz [no response]  CRC ok\n"
-        "     7     1.500000  12 response  Write Single Register 3104 HSP=50.0 Hz [no request] [warning: response"
+        "     3  0.012000000  12 request   Write Single Register 3104 HSP=50.0 Hz [no response]  CRC ok\n"
+        "     4  0.600000000  12 request   Write Single Register 3104 HSP=50.0 Hz  CRC ok\n"
+        "     5  0.612000000  12 response  Write Single Register 3104 HSP=50.0 Hz [#4, 12.0 ms]  CRC ok\n"
+        "     6  1.000000000  12 request   Write Single Register 3104 HSP=45.0 Hz [no response]  CRC ok\n"
+        "     7  1.500000000  12 response  Write Single Register 3104 HSP=50.0 Hz [no request] [warning: response"
         " 500.0 ms after request #6, later than the 400 ms timeout: not its answer]  CRC ok\n"
     )
 

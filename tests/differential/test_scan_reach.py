@@ -35,14 +35,14 @@ def test_an_fc8_scan_stops_at_a_record_that_is_a_frame(tmp_path: Path, monkeypat
     # (then the 16 bytes again in one record, the echo of the reading across: the engine wrote both lines itself)
     records = [*_crossing(FC8), (FC8 + REQUEST, 2.03), (REQUEST, 3.0), (ANSWER, 3.01)]
     assert _lines(tmp_path, records, monkeypatch) == [
-        f"     1     0.000000  {READ}",
-        f"     2     0.010000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#1, 10.0 ms]  CRC ok",
-        "     3     2.000000   - noise     8 bytes of noise at offset 19: 0c 08 00 00 12 34 bb 74",
-        f"     4     2.004583  {READ[:-8]} [no response]  CRC ok",
-        "     5     2.030000  12 request   Diagnostics 00h Return Query Data data 1234bb740c0320d00003"
+        f"     1  0.000000000  {READ}",
+        f"     2  0.010000000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#1, 10.0 ms]  CRC ok",
+        "     3  2.000000000   - noise     8 bytes of noise at offset 19: 0c 08 00 00 12 34 bb 74",
+        f"     4  2.004583333  {READ[:-8]} [no response]  CRC ok",
+        "     5  2.030000000  12 request   Diagnostics 00h Return Query Data data 1234bb740c0320d00003"
         " [no response]  CRC ok",
-        f"     6     3.000000  {READ}",
-        f"     7     3.010000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#6, 10.0 ms]  CRC ok",
+        f"     6  3.000000000  {READ}",
+        f"     7  3.010000000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#6, 10.0 ms]  CRC ok",
     ]
 
 
@@ -50,10 +50,10 @@ def test_a_user_defined_scan_stops_at_a_record_that_is_a_frame(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     assert _lines(tmp_path, [*_crossing(USER), (ANSWER, 2.03)], monkeypatch) == [
-        f"     1     0.000000  {READ}",
-        f"     2     0.010000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#1, 10.0 ms]  CRC ok",
-        "     3     2.000000   - noise     24 bytes of noise at offset 19: "
+        f"     1  0.000000000  {READ}",
+        f"     2  0.010000000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#1, 10.0 ms]  CRC ok",
+        "     3  2.000000000   - noise     24 bytes of noise at offset 19: "
         "29 46 a5 4d ca 18 25 30 bb 1d 6d 13 2c de d6 23…",
-        f"     4     2.013750  {READ}",
-        f"     5     2.030000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#4, 16.2 ms]  CRC ok",
+        f"     4  2.013750000  {READ}",
+        f"     5  2.030000000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#4, 16.2 ms]  CRC ok",
     ]

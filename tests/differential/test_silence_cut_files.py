@@ -38,6 +38,11 @@ WRITERS = {"pcap": write_pcap, "pcapng": write_pcapng, "txt": write_hex}
 FORMATS = pytest.mark.parametrize("form", sorted(WRITERS))
 
 
+def column(form: str, seconds: float) -> str:
+    """The time column at the form's precision: a nanosecond pcap's 9 decimals (as tshark shows them), 6."""
+    return f"{seconds:12.9f}" if form == "pcap" else f"{seconds:12.6f}"
+
+
 def decode(records: list[tuple[bytes, int]], form: str, pure: bool, tmp_path: Path, *options: str) -> list[str]:
     """vw3-decode's lines on a file of `records` (bytes, time in ns) in format `form`."""
     capture = tmp_path / f"capture.{form}"
@@ -60,7 +65,7 @@ NEXT_POLL = [(POLL, T0), (ANSWER, T0 + 10 * MS), (POLL[:4], T0 + 1000 * MS), (PO
 @FORMATS
 def test_a_silence_cuts_the_next_poll(form: str, pure: bool, tmp_path: Path) -> None:
     assert decode(NEXT_POLL, form, pure, tmp_path)[2] == (
-        "     3     1.000000   - noise     4 bytes of noise at offset 17: 01 03 00 00")
+        f"     3 {column(form, 1.0)}   - noise     4 bytes of noise at offset 17: 01 03 00 00")
     assert noise_reasons(decode(NEXT_POLL, form, pure, tmp_path, "--json")) == [
         "a silence cuts a request (4 of 8 bytes)"]
     verbose = decode(NEXT_POLL, form, pure, tmp_path, "-V")

@@ -87,18 +87,19 @@ def test_time_of_day_a_little_earlier_goes_back(tmp_path: Path, monkeypatch: pyt
 
 
 def test_backwards_pcap_shown_as_it_is_and_warned(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # (a nanosecond pcap: 9 decimals, as tshark shows them; a 13th character where the time is negative)
     out, engine_lines = assert_same([str(backwards_pcap(tmp_path))], monkeypatch)
     assert out == (
-        "     1     0.000000   1 request   Read Holding Registers 3202  CRC ok\n"
-        "     2     0.010000   1 response  Read Holding Registers 3202: 3202=100 [#1, 10.0 ms]  CRC ok\n"
-        "     3     0.500000   1 request   Read Holding Registers 3202  CRC ok\n"
-        f"     4     0.480000   1 response  Read Holding Registers 3202: 3202=100 [#3, -20.0 ms] [warning: {WARNING}]  CRC ok\n"
-        "     5     1.000000   1 request   Read Holding Registers 3202  CRC ok\n"
-        "     6     1.012000   1 response  Read Holding Registers 3202: 3202=100 [#5, 12.0 ms]  CRC ok\n"
-        "     7   -50.000000   1 request   Read Holding Registers 3202  CRC ok\n"
-        "     8   -49.989000   1 response  Read Holding Registers 3202: 3202=100 [#7, 11.0 ms]  CRC ok\n"
-        "     9   -49.500000   1 request   Read Holding Registers 3202  CRC ok\n"
-        "    10   -49.491000   1 response  Read Holding Registers 3202: 3202=100 [#9, 9.0 ms]  CRC ok\n"
+        "     1  0.000000000   1 request   Read Holding Registers 3202  CRC ok\n"
+        "     2  0.010000000   1 response  Read Holding Registers 3202: 3202=100 [#1, 10.0 ms]  CRC ok\n"
+        "     3  0.500000000   1 request   Read Holding Registers 3202  CRC ok\n"
+        f"     4  0.480000000   1 response  Read Holding Registers 3202: 3202=100 [#3, -20.0 ms] [warning: {WARNING}]  CRC ok\n"
+        "     5  1.000000000   1 request   Read Holding Registers 3202  CRC ok\n"
+        "     6  1.012000000   1 response  Read Holding Registers 3202: 3202=100 [#5, 12.0 ms]  CRC ok\n"
+        "     7 -50.000000000   1 request   Read Holding Registers 3202  CRC ok\n"
+        "     8 -49.989000000   1 response  Read Holding Registers 3202: 3202=100 [#7, 11.0 ms]  CRC ok\n"
+        "     9 -49.500000000   1 request   Read Holding Registers 3202  CRC ok\n"
+        "    10 -49.491000000   1 response  Read Holding Registers 3202: 3202=100 [#9, 9.0 ms]  CRC ok\n"
     )
     assert engine_lines == 8  # the engine shows all but the answer stamped before its request (handed over)
     out, _ = assert_same([str(backwards_pcap(tmp_path)), "-V"], monkeypatch)

@@ -33,14 +33,14 @@ def test_the_answer_awaited_is_not_waited_for_across_a_request_s_record(
     records = [(REQUEST, 0.0), (HEAD, 0.01), (REQUEST, 0.01 + 5 * CHARACTER), (TAIL, 0.01 + 13 * CHARACTER),
                (REQUEST, 2.0), (ANSWER, 2.01)]
     assert _lines(tmp_path, records, monkeypatch) == [
-        "     1     0.000000  12 request   Read Holding Registers 8400..8402 (3) [no response]  CRC ok",
-        "     2     0.010000   - noise     1 byte of noise at offset 8: 0c",
-        "     3     0.010000   3 request   Get Comm Event Log [no response]  "
+        "     1  0.000000000  12 request   Read Holding Registers 8400..8402 (3) [no response]  CRC ok",
+        "     2  0.010000000   - noise     1 byte of noise at offset 8: 0c",
+        "     3  0.010000000   3 request   Get Comm Event Log [no response]  "
         "CRC BAD (received 0x0100, expected 0x4501)",
-        "     4     0.012865  12 request   Read Holding Registers 8400..8402 (3) [no response]  CRC ok",
-        f"     5     0.017448   - noise     4 bytes of noise at offset 21: 00 02 {TAIL[2]:02x} {TAIL[3]:02x}",
-        f"     6     2.000000  {READ}",
-        f"     7     2.010000  12 response  Read Holding Registers 8400..8402 (3): {RAW_VALUES} [#6, 10.0 ms]"
+        "     4  0.012864583  12 request   Read Holding Registers 8400..8402 (3) [no response]  CRC ok",
+        f"     5  0.017447917   - noise     4 bytes of noise at offset 21: 00 02 {TAIL[2]:02x} {TAIL[3]:02x}",
+        f"     6  2.000000000  {READ}",
+        f"     7  2.010000000  12 response  Read Holding Registers 8400..8402 (3): {RAW_VALUES} [#6, 10.0 ms]"
         "  CRC ok",
     ]
 
@@ -51,12 +51,12 @@ def test_what_follows_a_damaged_request_is_settled_by_the_next_record(
 ) -> None:
     records = [(REQUEST, 0.0), (ANSWER, 0.01), (DAMAGED + bytes.fromhex(then), 2.0), (REQUEST, 3.0), (ANSWER, 3.01)]
     assert _lines(tmp_path, records, monkeypatch) == [
-        f"     1     0.000000  {READ}",
-        f"     2     0.010000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#1, 10.0 ms]  CRC ok",
-        "     3     2.000000   - noise     12 bytes of noise at offset 19: 0c 03 20 d0 00 03 0e ee "
+        f"     1  0.000000000  {READ}",
+        f"     2  0.010000000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#1, 10.0 ms]  CRC ok",
+        "     3  2.000000000   - noise     12 bytes of noise at offset 19: 0c 03 20 d0 00 03 0e ee "
         + " ".join(then[k:k + 2] for k in range(0, 8, 2)),
-        f"     4     3.000000  {READ}",
-        f"     5     3.010000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#4, 10.0 ms]  CRC ok",
+        f"     4  3.000000000  {READ}",
+        f"     5  3.010000000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#4, 10.0 ms]  CRC ok",
     ]
 
 
@@ -70,11 +70,11 @@ def test_an_fc8_scan_stops_at_a_record_that_is_a_scanned_frame(
     records = [(REQUEST, 0.0), (ANSWER, 0.01), (FC8, 2.0), (user, 2.0 + 8 * CHARACTER), (REQUEST, 3.0),
                (ANSWER, 3.01)]
     assert _lines(tmp_path, records, monkeypatch) == [
-        f"     1     0.000000  {READ}",
-        f"     2     0.010000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#1, 10.0 ms]  CRC ok",
-        "     3     2.000000   - noise     8 bytes of noise at offset 19: 0c 08 00 00 12 34 bb 74",
-        "     4     2.004583  12 request   User-defined function 70 4 bytes of data [no response] "
+        f"     1  0.000000000  {READ}",
+        f"     2  0.010000000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#1, 10.0 ms]  CRC ok",
+        "     3  2.000000000   - noise     8 bytes of noise at offset 19: 0c 08 00 00 12 34 bb 74",
+        "     4  2.004583333  12 request   User-defined function 70 4 bytes of data [no response] "
         "[warning: User-defined function 70 (70) is not supported by the VW3 A3 303]  CRC ok",
-        f"     5     3.000000  {READ}",
-        f"     6     3.010000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#5, 10.0 ms]  CRC ok",
+        f"     5  3.000000000  {READ}",
+        f"     6  3.010000000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#5, 10.0 ms]  CRC ok",
     ]

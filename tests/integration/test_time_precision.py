@@ -67,6 +67,19 @@ def test_nanosecond_pcap_shows_nine_decimals(tmp_path: Path, monkeypatch: pytest
     assert columns(["-t", "e", path], monkeypatch, pure) == ["1767225600.009018123", "1767225600.022017123"]
 
 
+def test_the_engine_writes_a_nanosecond_column(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """The compiled path writes a nanosecond capture's summary lines itself (9 decimals from the stamps'
+    integers), as a microsecond one's: not handed to the Python stages (3.3x slower on 204,000 records)."""
+    from dissector.render.output import Output
+
+    written: list[bytes] = []
+    write = Output.write_encoded
+    monkeypatch.setattr(Output, "write_encoded", lambda self, lines: (written.append(lines), write(self, lines)))
+    path = str(pcap(tmp_path / "ns.pcap", 10**9, NANOS))
+    assert columns([path], monkeypatch, False) == ["0.000000000", "0.012999000"]
+    assert b"".join(written).decode().splitlines()[0].startswith("     1  0.000000000   1 request")
+
+
 @BOTH
 def test_microsecond_pcap_keeps_six(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
     path = str(pcap(tmp_path / "us.pcap", 10**6, [START * 10**6 + 9_018, START * 10**6 + 22_017]))
