@@ -4450,9 +4450,7 @@ end
 -- Walk the FC43/14 object list: its count at `position`, then (id, length, value) per object from `start`.
 -- Where the walk does not end in a valid CRC (past the bytes there or an RTU frame, or its CRC fails), a CRC
 -- scan from the list's start (start + 2, rules.py _mei_objects), with the walk's length (NEED: past the
--- bytes) as a third value: the framer's damaged frame or answer cut by the end of the capture. A walk that
--- ends where the bytes do (a record of one frame) gives its length and, fourth, the scan's minimum: the
--- framer checks the CRC there once (feed_whole by the record's string) and scans where it fails.
+-- bytes) as a third value: the framer's damaged frame or answer cut by the end of the capture.
 local function mei_objects(position, start)
   local minimum = start + 2
   return function(b, i, n)
@@ -4464,8 +4462,7 @@ local function mei_objects(position, start)
       if stop > MAX_ADU then return minimum, true, NONE end
     end
     local length = stop + 2
-    if i + length == n and length <= MAX_ADU then return length, false, nil, minimum end
-    if i + length < n and crc_ok_at(b, i, length) then return length end
+    if i + length <= n and crc_ok_at(b, i, length) then return length end
     return minimum, true, length
   end
 end
@@ -4992,13 +4989,10 @@ local function ends_record(s, b, i, n)
   local echo = s.echo
   local settled = not (echo ~= nil and s.expect == slave * 256 + code and i + 1 + #echo >= n)
   for index = 1, #list do
-    local length, is_scan, walk, fallback = list[index][2](b, i, n)
+    local length, is_scan, walk = list[index][2](b, i, n)
     -- (a rule's length is its bytes' alone but for NEED and the FC43 object walk's: the walk's length, NEED or
-    -- at n or past it, or a fallback, given where the walk ends at n, say that more bytes may change it)
-    if length == NEED or walk == NEED or walk ~= nil and i + walk >= n or fallback ~= nil and i + length >= n then
-      settled = false
-    end
-    if fallback ~= nil and not crc_ok_at(b, i, length) then is_scan, length = true, fallback end -- (its CRC scan)
+    -- at n or past it, says that more bytes may change it)
+    if length == NEED or walk == NEED or walk ~= nil and i + walk >= n then settled = false end
     if is_scan then -- (rtu.py _ends_record: the record's length, from the scan's minimum on)
       local stop = first_after(s, s.boundaries, i, n) -- (the first record end after i)
       if stop == nil then settled = false end
@@ -5058,7 +5052,7 @@ local function valid_frame_at(s, b, i, n, final, scan)
   local found = false -- (nil: a CRC scan found nothing yet, but a longer frame may still arrive)
   local list = interpretations(s, b[i], b[i + 1], b, i, n) -- (any address: 248..255 are framed)
   for index = 1, #list do
-    local length, is_scan, _, fallback = list[index][2](b, i, n)
+    local length, is_scan = list[index][2](b, i, n)
     if not is_scan and length == NEED then
       if final then return false end
       -- (bytes that would swallow a record that is a frame: none, not waited for)
@@ -5068,8 +5062,6 @@ local function valid_frame_at(s, b, i, n, final, scan)
         if not final and not crosses_framed_record(s, b, i, length, n) then return nil end
       elseif crc_ok_at(b, i, length) then
         return true
-      elseif fallback ~= nil then -- (its rule's CRC scan where the CRC fails)
-        is_scan, length = true, fallback
       end
     end
     if is_scan and scan ~= false then
@@ -5265,7 +5257,7 @@ local function match(s, b, i, n, final)
   local awaits = awaited(s, b, i, n) -- (the answer awaited, its echo weighed)
   for index = 1, #list do
     local kind = list[index][1]
-    local length, is_scan, declared, fallback = list[index][2](b, i, n)
+    local length, is_scan, declared = list[index][2](b, i, n)
     local sized = not is_scan and length >= MIN_ADU and length <= MAX_ADU
     if not is_scan and (length == NEED or (sized and i + length > n)) then
       -- (its bytes have not all come; not waited for if they would swallow a record that is a frame)
@@ -5275,10 +5267,8 @@ local function match(s, b, i, n, final)
     elseif sized then
       if crc_ok_at(b, i, length) then
         valid = added(valid, { kind, length })
-      elseif fallback == nil then
-        if not counts_nothing(b, i, kind, length) then damaged = added(damaged, { kind, length }) end
-      else -- (its rule's CRC scan where the CRC fails)
-        is_scan, length, declared = true, fallback, length
+      elseif not counts_nothing(b, i, kind, length) then
+        damaged = added(damaged, { kind, length })
       end
     end
     if is_scan then
@@ -5387,8 +5377,8 @@ local function expected_length(s, b, i, n, kind)
   local list = interpretations(s, b[i], b[i + 1], b, i, n)
   for index = 1, #list do
     if list[index][1] == kind then
-      local length, is_scan, _, fallback = list[index][2](b, i, n)
-      if is_scan or (fallback ~= nil and not (i + length <= n and crc_ok_at(b, i, length))) then return 0 end
+      local length, is_scan = list[index][2](b, i, n)
+      if is_scan then return 0 end
       return length >= MIN_ADU and length or 0
     end
   end
@@ -5402,9 +5392,8 @@ end
 local function checks_out(s, b, i, n)
   local list = interpretations(s, b[i], b[i + 1], b, i, n)
   for index = 1, #list do
-    local length, is_scan, _, fallback = list[index][2](b, i, n)
+    local length, is_scan = list[index][2](b, i, n)
     if not is_scan and length >= MIN_ADU and length <= n - i and crc_ok_at(b, i, length) then return true end
-    if fallback ~= nil then is_scan, length = true, fallback end -- (its rule's CRC scan)
     if is_scan and crc_scan(b, i, length, math.min(n - i, MAX_ADU)) > 0 then return true end
   end
   return false
@@ -5420,8 +5409,8 @@ local function cut_request(s, b, i, n, silence)
   local list = interpretations(s, slave, code, b, i, n)
   for index = 1, #list do
     if list[index][1] == REQUEST then
-      local length, is_scan, _, fallback = list[index][2](b, i, n)
-      if is_scan or fallback ~= nil or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then
+      local length, is_scan = list[index][2](b, i, n)
+      if is_scan or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then
         return nil
       end
       if checks_out(s, b, i, n) or intact_inside(s, b, i, n - i, n, true) then return nil end

@@ -52,9 +52,7 @@ end
 -- Walk the FC43/14 object list: its count at `position`, then (id, length, value) per object from `start`.
 -- Where the walk does not end in a valid CRC (past the bytes there or an RTU frame, or its CRC fails), a CRC
 -- scan from the list's start (start + 2, rules.py _mei_objects), with the walk's length (NEED: past the
--- bytes) as a third value: the framer's damaged frame or answer cut by the end of the capture. A walk that
--- ends where the bytes do (a record of one frame) gives its length and, fourth, the scan's minimum: the
--- framer checks the CRC there once (feed_whole by the record's string) and scans where it fails.
+-- bytes) as a third value: the framer's damaged frame or answer cut by the end of the capture.
 local function mei_objects(position, start)
   local minimum = start + 2
   return function(b, i, n)
@@ -66,8 +64,7 @@ local function mei_objects(position, start)
       if stop > MAX_ADU then return minimum, true, NONE end
     end
     local length = stop + 2
-    if i + length == n and length <= MAX_ADU then return length, false, nil, minimum end
-    if i + length < n and crc_ok_at(b, i, length) then return length end
+    if i + length <= n and crc_ok_at(b, i, length) then return length end
     return minimum, true, length
   end
 end

@@ -17,13 +17,10 @@ local function ends_record(s, b, i, n)
   local echo = s.echo
   local settled = not (echo ~= nil and s.expect == slave * 256 + code and i + 1 + #echo >= n)
   for index = 1, #list do
-    local length, is_scan, walk, fallback = list[index][2](b, i, n)
+    local length, is_scan, walk = list[index][2](b, i, n)
     -- (a rule's length is its bytes' alone but for NEED and the FC43 object walk's: the walk's length, NEED or
-    -- at n or past it, or a fallback, given where the walk ends at n, say that more bytes may change it)
-    if length == NEED or walk == NEED or walk ~= nil and i + walk >= n or fallback ~= nil and i + length >= n then
-      settled = false
-    end
-    if fallback ~= nil and not crc_ok_at(b, i, length) then is_scan, length = true, fallback end -- (its CRC scan)
+    -- at n or past it, says that more bytes may change it)
+    if length == NEED or walk == NEED or walk ~= nil and i + walk >= n then settled = false end
     if is_scan then -- (rtu.py _ends_record: the record's length, from the scan's minimum on)
       local stop = first_after(s, s.boundaries, i, n) -- (the first record end after i)
       if stop == nil then settled = false end
@@ -83,7 +80,7 @@ local function valid_frame_at(s, b, i, n, final, scan)
   local found = false -- (nil: a CRC scan found nothing yet, but a longer frame may still arrive)
   local list = interpretations(s, b[i], b[i + 1], b, i, n) -- (any address: 248..255 are framed)
   for index = 1, #list do
-    local length, is_scan, _, fallback = list[index][2](b, i, n)
+    local length, is_scan = list[index][2](b, i, n)
     if not is_scan and length == NEED then
       if final then return false end
       -- (bytes that would swallow a record that is a frame: none, not waited for)
@@ -93,8 +90,6 @@ local function valid_frame_at(s, b, i, n, final, scan)
         if not final and not crosses_framed_record(s, b, i, length, n) then return nil end
       elseif crc_ok_at(b, i, length) then
         return true
-      elseif fallback ~= nil then -- (its rule's CRC scan where the CRC fails)
-        is_scan, length = true, fallback
       end
     end
     if is_scan and scan ~= false then
@@ -290,7 +285,7 @@ local function match(s, b, i, n, final)
   local awaits = awaited(s, b, i, n) -- (the answer awaited, its echo weighed)
   for index = 1, #list do
     local kind = list[index][1]
-    local length, is_scan, declared, fallback = list[index][2](b, i, n)
+    local length, is_scan, declared = list[index][2](b, i, n)
     local sized = not is_scan and length >= MIN_ADU and length <= MAX_ADU
     if not is_scan and (length == NEED or (sized and i + length > n)) then
       -- (its bytes have not all come; not waited for if they would swallow a record that is a frame)
@@ -300,10 +295,8 @@ local function match(s, b, i, n, final)
     elseif sized then
       if crc_ok_at(b, i, length) then
         valid = added(valid, { kind, length })
-      elseif fallback == nil then
-        if not counts_nothing(b, i, kind, length) then damaged = added(damaged, { kind, length }) end
-      else -- (its rule's CRC scan where the CRC fails)
-        is_scan, length, declared = true, fallback, length
+      elseif not counts_nothing(b, i, kind, length) then
+        damaged = added(damaged, { kind, length })
       end
     end
     if is_scan then
@@ -412,8 +405,8 @@ local function expected_length(s, b, i, n, kind)
   local list = interpretations(s, b[i], b[i + 1], b, i, n)
   for index = 1, #list do
     if list[index][1] == kind then
-      local length, is_scan, _, fallback = list[index][2](b, i, n)
-      if is_scan or (fallback ~= nil and not (i + length <= n and crc_ok_at(b, i, length))) then return 0 end
+      local length, is_scan = list[index][2](b, i, n)
+      if is_scan then return 0 end
       return length >= MIN_ADU and length or 0
     end
   end
@@ -427,9 +420,8 @@ end
 local function checks_out(s, b, i, n)
   local list = interpretations(s, b[i], b[i + 1], b, i, n)
   for index = 1, #list do
-    local length, is_scan, _, fallback = list[index][2](b, i, n)
+    local length, is_scan = list[index][2](b, i, n)
     if not is_scan and length >= MIN_ADU and length <= n - i and crc_ok_at(b, i, length) then return true end
-    if fallback ~= nil then is_scan, length = true, fallback end -- (its rule's CRC scan)
     if is_scan and crc_scan(b, i, length, math.min(n - i, MAX_ADU)) > 0 then return true end
   end
   return false
@@ -445,8 +437,8 @@ local function cut_request(s, b, i, n, silence)
   local list = interpretations(s, slave, code, b, i, n)
   for index = 1, #list do
     if list[index][1] == REQUEST then
-      local length, is_scan, _, fallback = list[index][2](b, i, n)
-      if is_scan or fallback ~= nil or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then
+      local length, is_scan = list[index][2](b, i, n)
+      if is_scan or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then
         return nil
       end
       if checks_out(s, b, i, n) or intact_inside(s, b, i, n - i, n, true) then return nil end
