@@ -32,9 +32,10 @@ def test_refused_unanswered_and_confirmed_writes(tmp_path: Path, monkeypatch: py
                                                                (16, "echo", 20, 78, "confirmed", None)]
     out, _framed = engine_output_as_python(
         ["-T", "registers", "-E", "header=y", "-E", "separator=,", "-Y", "frame in {3, 5}", capture], monkeypatch)
+    # (the capture is a nanosecond pcap: its time column at 9 decimals, as tshark -T fields shows it)
     assert out.splitlines() == [
         "frame,time,slave,function,access,address,label,code,name,value,scaled,unit,status,text,write,exception_code",
-        "3,0.035982,1,6,write,100,,,,5,,,,,refused,2",
-        "5,0.068061,1,16,write,199,,,,5,,,,,refused,2",
-        "5,0.068061,1,16,write,200,,,,6,,,,,refused,2",
+        "3,0.035982000,1,6,write,100,,,,5,,,,,refused,2",
+        "5,0.068061000,1,16,write,199,,,,5,,,,,refused,2",
+        "5,0.068061000,1,16,write,200,,,,6,,,,,refused,2",
     ]
