@@ -145,11 +145,15 @@ static int fixed_text(char *text, double value, int digits) {
 }
 
 /* f"{value:>{width}.{digits}f}" (a stamp difference: never too long for fixed_text). */
-static void out_fixed(Out *o, double value, int digits, int width) {
-    char text[64];
-    int n = fixed_text(text, value, digits);
+/* text[0..n) right-aligned in `width` columns. */
+static void out_padded(Out *o, const char *text, int n, int width) {
     for (int pad = width - n; pad > 0; pad--) out_put(o, " ", 1);
     out_put(o, text, (size_t)n);
+}
+
+static void out_fixed(Out *o, double value, int digits, int width) {
+    char text[64];
+    out_padded(o, text, fixed_text(text, value, digits), width);
 }
 
 /* summary_line's head after the number: ` {column:>12} ` (render/timefmt.Clock.text, -t r, d, dd). */
@@ -171,9 +175,7 @@ static void out_time_column(Out *o, Timeline *t, int timed, long long ns) {
     if (t->nanos) { /* from the integers, as render/timefmt.py Clock._since: a double keeps no 9 decimals */
         long long d = ns - since;
         char text[64];
-        int n = fixed_digits(text, (unsigned long long)(d < 0 ? -d : d), 9, d < 0);
-        for (int pad = 12 - n; pad > 0; pad--) out_put(o, " ", 1);
-        out_put(o, text, (size_t)n);
+        out_padded(o, text, fixed_digits(text, (unsigned long long)(d < 0 ? -d : d), 9, d < 0), 12);
     } else {
         out_fixed(o, stamp_seconds(ns, since), 6, 12);
     }

@@ -22,7 +22,8 @@ from dissector.accel.fastsummary import NEED, PythonSide, built, forget_changed,
 from dissector.accel.records import Block
 from dissector.model import Chunk, Item, Stamp
 from dissector.pipeline import Dissector
-from dissector.render.timefmt import NS as NANOS, Clock
+from dissector.render.pcapwriter import NANOS
+from dissector.render.timefmt import Clock
 
 CLOCKS = {"r": 0, "d": 1, "dd": 1}  # the time columns the engine writes (timefmt.Clock.text)
 

@@ -20,9 +20,10 @@ RING_NAME = re.compile(r"^(?P<prefix>.*)_(?P<number>\d{5,})_(?P<stamp>\d{14})(?P
 def group_files(paths: list[str]) -> list[tuple[str, tuple[str, ...]]]:
     """(shown, files) per capture, in the order first named: a ring buffer's files (same folder, prefix
     and suffix) by file number, shown as `folder/PREFIX.EXT` (its one file's name when only one is
-    given); any other path alone, as named (its bytes that are not UTF-8 as \\xNN: sources/common.py name_text). Files of several dumpcap runs under one name (a capture
-    restarted in the same folder numbers its files from 00001 again) are one capture a run (_runs), each
-    shown as its first file's name: read by number alone, the runs' files were one stream, interleaved."""
+    given); any other path alone, as named (its bytes that are not UTF-8 as \\xNN: sources/common.py
+    name_text). Files of several dumpcap runs under one name (a capture restarted in the same folder
+    numbers its files from 00001 again) are one capture a run (_runs), each shown as its first file's
+    name: read by number alone, the runs' files were one stream, interleaved."""
     rings: dict[tuple[str, str, str], list[tuple[int, str, str]]] = {}
     order: list[tuple[str, str] | tuple[str, str, str]] = []
     for path in paths:

@@ -10,6 +10,7 @@ import time as _time
 from dataclasses import dataclass, field
 
 from dissector.model import Item, Stamp
+from dissector.render.pcapwriter import NANOS
 
 # -t value -> what tshark calls it (for --help and error messages)
 TIME_FORMATS: dict[str, str] = {
@@ -35,7 +36,6 @@ NOT_REPRESENTABLE = "Not representable"
 # tshark's time precisions (wiretap's WTAP_TSPREC: s, ds, cs, ms, us, ns): the decimals of its time column.
 PRECISIONS = (0, 1, 2, 3, 6, 9)
 MICRO_DIGITS = 6  # a pcap's, a text log's, a live line's: microseconds
-NS = 1_000_000_000
 
 
 def column_digits(units: int | None) -> int:
@@ -55,8 +55,8 @@ def whole_fraction(seconds: float, digits: int = MICRO_DIGITS, cut: bool = False
     scale = 10**digits
     ns = getattr(seconds, "ns", None)
     if ns is not None:
-        whole, rest = divmod(ns, NS)
-        fraction = rest * scale // NS if cut else round(rest * scale / NS)
+        whole, rest = divmod(ns, NANOS)
+        fraction = rest * scale // NANOS if cut else round(rest * scale / NANOS)
     else:
         whole = int(seconds // 1)
         fraction = round((seconds - whole) * scale)
