@@ -1818,6 +1818,13 @@ local DATA = {
         ["help"] = "FC43/14's number of objects",
         ["base"] = "DEC",
       },
+      {
+        ["abbr"] = "vw3.trailing",
+        ["ftype"] = "bytes",
+        ["title"] = "Trailing",
+        ["help"] = "bytes after the PDU's data (vw3-decode's fields.trailing; warned: unexpected bytes after the data)",
+        ["plain"] = true,
+      },
     },
     ["experts"] = {
       {
@@ -9500,13 +9507,14 @@ local function mask_register(f, b, places)
     value = and_mask == 0 and or_mask or nil, text = say(and_mask == 0 and "mask_written" or "mask_prior", masks) }
 end
 
--- The PDU's fields of a frame that parsed (not an exception's: its code is shown as such), under `t`; an
--- FC22's register after them.
+-- The PDU's fields of a frame that parsed (not an exception's: its code is shown as such), under `t`, the
+-- bytes after them (vw3-decode -V's `Trailing: aabb`); an FC22's register after them.
 local function add_pdu(t, tvb, f, stop)
   local name = layout_of(f.kind, f.fn)
   if f.malformed or #LAYOUTS[name] == 0 then return end
   local b = frame_bytes(f, tvb)
-  add_shape(t, tvb, f, b, LAYOUTS[name], 2, stop)
+  local at = add_shape(t, tvb, f, b, LAYOUTS[name], 2, stop)
+  if at ~= nil and at < stop then t:add(pf.trailing, frame_range(tvb, f, at, stop - at)) end
   if MASK_WRITES[f.fn] then add_register(t, tvb, f, mask_register(f, b, DATA.field_places[name]), nil, true) end
 end
 
@@ -9973,7 +9981,11 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   if full and f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
   if f.kind == EXCEPTION then
     local code = f.exception_code -- (nil: none, a malformed exception)
-    if full and code ~= nil then t:add(pf.exception_code, frame_range(tvb, f, 2, 1), code) end
+    if full and code ~= nil then
+      t:add(pf.exception_code, frame_range(tvb, f, 2, 1), code)
+      -- (bytes after its code: vw3-decode --json's fields.trailing, -Y fields.trailing)
+      if crc_at > 3 then t:add(pf.trailing, frame_range(tvb, f, 3, crc_at - 3)) end
+    end
     add_text(t, ex.exception, format("Exception %s: %s", code or "?", f.exception_meaning or exception_name(code)))
     if full then
       t:add(pf.exception_name, whole, exception_name(f.exception_code)):set_generated()

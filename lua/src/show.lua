@@ -93,7 +93,11 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   if full and f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
   if f.kind == EXCEPTION then
     local code = f.exception_code -- (nil: none, a malformed exception)
-    if full and code ~= nil then t:add(pf.exception_code, frame_range(tvb, f, 2, 1), code) end
+    if full and code ~= nil then
+      t:add(pf.exception_code, frame_range(tvb, f, 2, 1), code)
+      -- (bytes after its code: vw3-decode --json's fields.trailing, -Y fields.trailing)
+      if crc_at > 3 then t:add(pf.trailing, frame_range(tvb, f, 3, crc_at - 3)) end
+    end
     add_text(t, ex.exception, format("Exception %s: %s", code or "?", f.exception_meaning or exception_name(code)))
     if full then
       t:add(pf.exception_name, whole, exception_name(f.exception_code)):set_generated()

@@ -236,13 +236,14 @@ local function mask_register(f, b, places)
     value = and_mask == 0 and or_mask or nil, text = say(and_mask == 0 and "mask_written" or "mask_prior", masks) }
 end
 
--- The PDU's fields of a frame that parsed (not an exception's: its code is shown as such), under `t`; an
--- FC22's register after them.
+-- The PDU's fields of a frame that parsed (not an exception's: its code is shown as such), under `t`, the
+-- bytes after them (vw3-decode -V's `Trailing: aabb`); an FC22's register after them.
 local function add_pdu(t, tvb, f, stop)
   local name = layout_of(f.kind, f.fn)
   if f.malformed or #LAYOUTS[name] == 0 then return end
   local b = frame_bytes(f, tvb)
-  add_shape(t, tvb, f, b, LAYOUTS[name], 2, stop)
+  local at = add_shape(t, tvb, f, b, LAYOUTS[name], 2, stop)
+  if at ~= nil and at < stop then t:add(pf.trailing, frame_range(tvb, f, at, stop - at)) end
   if MASK_WRITES[f.fn] then add_register(t, tvb, f, mask_register(f, b, DATA.field_places[name]), nil, true) end
 end
 
