@@ -9498,12 +9498,12 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
 end
 
 -- The register of a write confirmed by its masks (data/modbus.toml [confirm] "mask": FC22), as vw3-decode
--- --json lists it (render/registers.py mask_register): at its address, its value where the value before
--- does not matter (and_mask 0: or_mask), its masks as text; on the or mask's bytes.
-local function mask_register(f, b, places)
-  local and_mask, or_mask = u16(b, places.and_mask.at), u16(b, places.or_mask.at)
+-- --json lists it (render/registers.py mask_register): at its address (label: as shown), its value where the
+-- value before does not matter (and_mask 0: or_mask), its masks as text; on the or mask's bytes (offset in
+-- the frame; vw3_modbus.lua's: none, it gives the range).
+local function mask_register(address, and_mask, or_mask, label, offset)
   local masks = { and_mask = and_mask, or_mask = or_mask }
-  return { address = u16(b, places.address.at), label = f.span_label, offset = places.or_mask.at,
+  return { address = address, label = label, offset = offset,
     value = and_mask == 0 and or_mask or nil, text = say(and_mask == 0 and "mask_written" or "mask_prior", masks) }
 end
 
@@ -9515,7 +9515,12 @@ local function add_pdu(t, tvb, f, stop)
   local b = frame_bytes(f, tvb)
   local at = add_shape(t, tvb, f, b, LAYOUTS[name], 2, stop)
   if at ~= nil and at < stop then t:add(pf.trailing, frame_range(tvb, f, at, stop - at)) end
-  if MASK_WRITES[f.fn] then add_register(t, tvb, f, mask_register(f, b, DATA.field_places[name]), nil, true) end
+  if MASK_WRITES[f.fn] then
+    local places = DATA.field_places[name]
+    local reg = mask_register(u16(b, places.address.at), u16(b, places.and_mask.at), u16(b, places.or_mask.at),
+      f.span_label, places.or_mask.at)
+    add_register(t, tvb, f, reg, nil, true)
+  end
 end
 
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than
@@ -9698,7 +9703,7 @@ local function summary(f, tvb, st, device)
 end
 M.START_WORDS, M.add_pdu, M.add_register, M.add_said = START_WORDS, add_pdu, add_register, add_said
 M.add_text, M.count_text, M.frame_bytes, M.frame_range = add_text, count_text, frame_bytes, frame_range
-M.summary, M.unseen = summary, unseen
+M.mask_register, M.summary, M.unseen = mask_register, summary, unseen
 end
 
 -- ---- vw3.clock: lua/src/clock.lua ----
@@ -10364,9 +10369,9 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local DATA, DissectorTable, MODE_REACH, Proto, READS = DATA, DissectorTable, MODE_REACH, Proto, READS
 local REQUEST, RESPONSE, add_register, add_text = REQUEST, RESPONSE, add_register, add_text
 local annotate_list, apply_prefs, device_now, dissect_now = annotate_list, apply_prefs, device_now, dissect_now
-local ended, ex, finish_all, ipairs, lane, new_state, os = ended, ex, finish_all, ipairs, lane, new_state, os
-local pack, package, pair_scan, pairs, pcall, pf = pack, package, pair_scan, pairs, pcall, pf
-local pinfo_cols, pinfo_number, pinfo_port_type, proto = pinfo_cols, pinfo_number, pinfo_port_type, proto
+local ended, ex, finish_all, ipairs, lane, mask_register = ended, ex, finish_all, ipairs, lane, mask_register
+local new_state, os, pack, package, pair_scan, pairs, pcall = new_state, os, pack, package, pair_scan, pairs, pcall
+local pf, pinfo_cols, pinfo_number, pinfo_port_type, proto = pf, pinfo_cols, pinfo_number, pinfo_port_type, proto
 local record_ns, sample_modes, show_record, stream_state = record_ns, sample_modes, show_record, stream_state
 local tostring, tree_text, tvb_raw, type, wtap = tostring, tree_text, tvb_raw, type, wtap
 
@@ -10581,7 +10586,7 @@ DissectorTable.get("udp.port"):add_for_decode_as(proto)
 -- a tree for every packet. (Each script has globals of its own; package.loaded is shared.)
 package.loaded.vw3_plugin = {
   new_state = new_state, device_now = device_now, annotate_registers = annotate_list,
-  reads = READS,
+  reads = READS, mask_register = mask_register,
   add_register = add_register, add_text = add_text, pf = pf, ex = ex, REQUEST = REQUEST, RESPONSE = RESPONSE,
 }
 

@@ -187,6 +187,8 @@ local function ranges_of(adu)
     for index, value in ipairs(values) do ranges[index] = value.range end
     return ranges
   end
+  local or_mask = fields_of(adu, "or_mask") -- (FC22's register: on its or mask, as the RTU plugin's)
+  if or_mask ~= nil and #or_mask > 0 then return { or_mask[1].range } end
   local data = fields_of(adu, "data")
   data = data and data[1]
   if data == nil then return ranges end
@@ -285,15 +287,23 @@ local function name_adu(pinfo, adu)
   if response and MASK_WRITES[f.fn] then f.fields = masks_of(adu) end
   if #registers == 0 then
     -- (an FC16 answer or an FC22 echo: no registers to name; the writes it confirms count, held as any
-    -- frame before a choice. A request: checked against the device)
-    local device = (confirmed or f.fields ~= nil or asking) and vw3.device_now(names_state, f)
+    -- frame before a choice. A request: checked against the device. FC22's request and echo: their
+    -- register shown, as the RTU plugin's tree.lua add_pdu shows it)
+    local masks = MASK_WRITES[f.fn] and masks_of(adu)
+    local device = (confirmed or masks or asking) and vw3.device_now(names_state, f)
     if device and confirmed then remember_writes(device, pinfo.number, request.written) end
     if device and f.fields ~= nil and device.track then
       env.remember_mask(device.seen, pinfo.number, f.fields)
     end
-    local warnings = device and asking and request_warnings(adu, asking, device)
-    if not warnings or #warnings == 0 then return false end
-    return { registers = registers, notes = f.notes, warnings = warnings, device = device, slave = slave }
+    local shown = {}
+    if device and masks then
+      local base = env.plc_base(device, f)
+      shown[1] = vw3.mask_register(masks.address, masks.and_mask, masks.or_mask,
+        base and env.PLC_LABELS[base][masks.address] or nil)
+    end
+    local warnings = device and asking and request_warnings(adu, asking, device) or {}
+    if #shown == 0 and #warnings == 0 then return false end
+    return { registers = shown, notes = f.notes, warnings = warnings, device = device, slave = slave }
   end
   local device = vw3.device_now(names_state, f)
   if not device then return false end

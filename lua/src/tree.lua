@@ -227,12 +227,12 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
 end
 
 -- The register of a write confirmed by its masks (data/modbus.toml [confirm] "mask": FC22), as vw3-decode
--- --json lists it (render/registers.py mask_register): at its address, its value where the value before
--- does not matter (and_mask 0: or_mask), its masks as text; on the or mask's bytes.
-local function mask_register(f, b, places)
-  local and_mask, or_mask = u16(b, places.and_mask.at), u16(b, places.or_mask.at)
+-- --json lists it (render/registers.py mask_register): at its address (label: as shown), its value where the
+-- value before does not matter (and_mask 0: or_mask), its masks as text; on the or mask's bytes (offset in
+-- the frame; vw3_modbus.lua's: none, it gives the range).
+local function mask_register(address, and_mask, or_mask, label, offset)
   local masks = { and_mask = and_mask, or_mask = or_mask }
-  return { address = u16(b, places.address.at), label = f.span_label, offset = places.or_mask.at,
+  return { address = address, label = label, offset = offset,
     value = and_mask == 0 and or_mask or nil, text = say(and_mask == 0 and "mask_written" or "mask_prior", masks) }
 end
 
@@ -244,7 +244,12 @@ local function add_pdu(t, tvb, f, stop)
   local b = frame_bytes(f, tvb)
   local at = add_shape(t, tvb, f, b, LAYOUTS[name], 2, stop)
   if at ~= nil and at < stop then t:add(pf.trailing, frame_range(tvb, f, at, stop - at)) end
-  if MASK_WRITES[f.fn] then add_register(t, tvb, f, mask_register(f, b, DATA.field_places[name]), nil, true) end
+  if MASK_WRITES[f.fn] then
+    local places = DATA.field_places[name]
+    local reg = mask_register(u16(b, places.address.at), u16(b, places.and_mask.at), u16(b, places.or_mask.at),
+      f.span_label, places.or_mask.at)
+    add_register(t, tvb, f, reg, nil, true)
+  end
 end
 
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than

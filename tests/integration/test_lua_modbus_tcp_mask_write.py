@@ -7,7 +7,9 @@ atv71) to unit 12: the same register texts and notes as the RTU plugin's (its PL
 vw3_modbus.lua ignored FC22: 'COP (8402) became protected: read 18 in frame #2', CMD not plain once
 CHCF was masked to 1. Under profile auto an FC22 echo is evidence as on a serial line (answered, a
 function the ATV71 lacks): the read that chose the ATV71 before no longer does, as vw3-decode reads the
-same PDUs over RTU. vw3-decode reads serial captures only (no Modbus/TCP). tshark one pass and -2."""
+same PDUs over RTU. vw3-decode reads serial captures only (no Modbus/TCP). tshark one pass and -2.
+An FC22 request and echo list their register (address, masks as text, the value where and_mask is 0), as the
+RTU plugin's tree does (tree.lua mask_register); before, vw3_modbus.lua listed none (Wireshark lists none)."""
 from __future__ import annotations
 
 import struct
@@ -49,26 +51,55 @@ def responses(tmp_path: Path, pairs: list[tuple[str, str]], two_pass: bool, *opt
     assert done.returncode == 0, done.stderr
     assert not lua_errors(done.stdout + done.stderr)
     lines = done.stdout.splitlines()
-    # (the requests: nothing named)
-    assert [line.split("|", 1)[1] for line in lines[0::2]] == ["|"] * len(pairs)
+    # (the requests: nothing named but an FC22's register, as its echo's: the serial plugin's tree.lua add_pdu)
+    assert [line.split("|", 1)[1] for line in lines[0::2]] == [
+        answer.split("|", 1)[1] if request.startswith("16") else "|"
+        for (request, _), answer in zip(pairs, lines[1::2])]
     return lines[1::2]
-
-
-# (but the echoes' own register, frames 4, 6 and 12: the serial plugin lists an FC22 frame's register as
-# vw3-decode --json does; vw3_modbus.lua names Wireshark's registers, and its Modbus tree shows the masks)
-TCP_LINES = [line if line.split("|")[0] not in ("4", "6", "12") else line.split("|")[0] + "||"
-             for line in PLUGIN_LINES]
 
 
 @pytest.mark.parametrize("two_pass", [False, True])
 def test_a_confirmed_mask_write_changes_the_memory(tmp_path: Path, two_pass: bool) -> None:
-    assert responses(tmp_path, PAIRS, two_pass, "-o", "vw3.profiles:atv71") == TCP_LINES
+    """The echoes' own register too (frames 4, 6 and 12), as the serial plugin lists an FC22 frame's register
+    and vw3-decode --json does (before: vw3_modbus.lua showed none, Wireshark lists no register for FC22)."""
+    assert responses(tmp_path, PAIRS, two_pass, "-o", "vw3.profiles:atv71") == PLUGIN_LINES
+
+
+# The FC22 register's fields under both address styles, as the serial plugin's for the same PDUs (its PLC label
+# from the device: 48403), on the or mask's bytes.
+REGISTER_FIELDS = ["vw3.reg.address", "vw3.reg.label", "vw3.reg.value", "vw3.reg.code", "vw3.reg.text"]
+MASK_REGISTERS = [  # (address, its PLC label, the rest)
+    ("8402", "48403", "|||AND 0x00F2 OR 0x0025: the result depends on the value before"),
+    ("8401", "48402", "|1||AND 0x0000 OR 0x0001"),
+]
+
+
+@pytest.mark.parametrize("style", ["profile", "plc"])
+def test_the_mask_register_has_the_serial_plugins_fields(tmp_path: Path, style: str) -> None:
+    writer = NetWriter(tmp_path / "mask.pcap")
+    for transaction, (request, response) in enumerate(PAIRS[1:3], start=1):
+        for to_server, pdu in ((True, bytes.fromhex(request)), (False, bytes.fromhex(response))):
+            writer.tcp(to_server, 40000, 502, struct.pack("!HHHB", transaction, 0, len(pdu) + 1, 12) + pdu,
+                       transaction + (0 if to_server else 0.01))
+    writer.close()
+    script = f"lua_script:{PLUGIN.parent / 'vw3_modbus.lua'}"
+    fields = [arg for name in REGISTER_FIELDS for arg in ("-e", name)]
+    done = run_tshark(tmp_path / "mask.pcap", "-X", script, "-o", "vw3.profiles:atv71", "-o",
+                      f"vw3.address_style:{style}", "-T", "fields", "-E", "separator=|", *fields)
+    assert done.returncode == 0 and not lua_errors(done.stdout + done.stderr), done.stderr
+    expected = [f"{address}|{label if style == 'plc' else ''}{rest}" for address, label, rest in MASK_REGISTERS]
+    assert done.stdout.splitlines() == [expected[0], expected[0], expected[1], expected[1]]
+    # (on the or mask's two bytes: 54 of headers, 7 of MBAP, then code, address and and mask)
+    tree = run_tshark(tmp_path / "mask.pcap", "-X", script, "-o", "vw3.profiles:atv71", "-T", "pdml").stdout
+    assert tree.count('<field name="vw3.reg" showname="Register 8402: AND 0x00F2 OR 0x0025: the result depends on '
+                      'the value before" size="2" pos="66"') == 2
 
 
 @pytest.mark.parametrize("two_pass", [False, True])
 def test_a_mask_write_is_evidence_for_profile_auto(tmp_path: Path, two_pass: bool) -> None:
     named = responses(tmp_path, CHOOSE_AFTER_A_MASK, two_pass)
-    assert named == ["2||", "4||", "6|" + "," * 13 + "|"]  # (no device: its 14 registers have no text)
+    # (no device: its 14 registers have no text; the echo's register its masks, as the serial plugin's)
+    assert named == ["2||", "4|AND 0x00F2 OR 0x0025: the result depends on the value before|", "6|" + "," * 13 + "|"]
     capture = tmp_path / "mask.bin"
     capture.write_bytes(b"".join(rtu(f"0C{pdu}") for pair in CHOOSE_AFTER_A_MASK for pdu in pair))
     status, out, err = run_cli([str(capture), "--profile", "auto"])
