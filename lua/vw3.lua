@@ -7170,6 +7170,10 @@ local function build_device(profile, slave)
   -- Parameters are followed only where it tells something: protection, or bits that depend on a value.
   device.track = profile.protected_value ~= nil or next(depend) ~= nil
   if style == "plc" then device.plc = profile.plc_base or {} end
+  -- (a write is checked against the map's read-only rows only where it has one, access.written_read_only)
+  for _, row in pairs(rows) do
+    if row.read_only then device.read_only = true break end
+  end
   return device
 end
 
@@ -7659,7 +7663,9 @@ end
 -- list, f.written), FC22 by its address.
 local REGISTER_WRITES, MASK_WRITTEN = DATA.rules.confirmed, DATA.rules.by_confirm.mask
 local READ_ONLY = "R" -- the access of a parameter no write changes (devices/access.py READ_ONLY)
+local NONE = {} -- (read only, never changed: a device without a read-only row has none to name)
 local function written_read_only(f, device)
+  if not device.read_only then return NONE end -- (no list of the addresses written made for nothing)
   local rows, named, code, addresses = device.rows, {}, f.fn, {}
   local run = f.registers
   if REGISTER_WRITES.echo[code] or REGISTER_WRITES.answer[code] then

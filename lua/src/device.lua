@@ -96,6 +96,10 @@ local function build_device(profile, slave)
   -- Parameters are followed only where it tells something: protection, or bits that depend on a value.
   device.track = profile.protected_value ~= nil or next(depend) ~= nil
   if style == "plc" then device.plc = profile.plc_base or {} end
+  -- (a write is checked against the map's read-only rows only where it has one, access.written_read_only)
+  for _, row in pairs(rows) do
+    if row.read_only then device.read_only = true break end
+  end
   return device
 end
 

@@ -52,7 +52,9 @@ end
 -- list, f.written), FC22 by its address.
 local REGISTER_WRITES, MASK_WRITTEN = DATA.rules.confirmed, DATA.rules.by_confirm.mask
 local READ_ONLY = "R" -- the access of a parameter no write changes (devices/access.py READ_ONLY)
+local NONE = {} -- (read only, never changed: a device without a read-only row has none to name)
 local function written_read_only(f, device)
+  if not device.read_only then return NONE end -- (no list of the addresses written made for nothing)
   local rows, named, code, addresses = device.rows, {}, f.fn, {}
   local run = f.registers
   if REGISTER_WRITES.echo[code] or REGISTER_WRITES.answer[code] then
