@@ -7405,11 +7405,6 @@ local function remember_writes(seen, number, run, b)
   end
 end
 
--- The same for a list of registers { address, value } (vw3_modbus.lua's frames, annotate_list's lists).
-local function remember_list(seen, number, registers)
-  for _, reg in ipairs(registers) do remember(seen, reg.address, reg.value, number, "written") end
-end
-
 -- A Mask Write its echo confirms ([confirm] "mask", memory.remember_mask): the register holds (current AND
 -- and_mask) OR (or_mask AND NOT and_mask) (Application Protocol 6.16); where the current value is not known
 -- (and_mask 0 replaces every bit), the parameter is forgotten.
@@ -7568,37 +7563,9 @@ local function annotate_registers(f, device, run, b, read)
   end
   story.tell(f)
 end
-
--- The same for a list of registers { address, value } (the Modbus/TCP naming of vw3_modbus.lua): each
--- gets its row, label, scaled value, text, status and words.
-local function annotate_list(st, f, device, registers, read)
-  local protected = read and device.profile.protected_value or nil
-  local base = plc_base(device, f)
-  local count = #registers
-  local multi = count > 1
-  local marked = false
-  if multi and protected ~= nil
-      and all_marked(f, device, count, function(index) return registers[index + 1].value end, protected) then
-    protected, marked = nil, true
-  end
-  for index, reg in ipairs(registers) do
-    local address = reg.address
-    if address ~= nil then
-      if base ~= nil then reg.label = PLC_LABELS[base][address] end
-      local words = words_at(device.rows, address, index - 1, count)
-      local next_reg = registers[index + 1]
-      if words == 2 and (next_reg == nil or next_reg.address ~= (address + 1) % 0x10000) then words = 1 end
-      if words == 0 and registers[index - 1].address ~= (address + 0xFFFF) % 0x10000 then words = 1 end
-      local plain, status = annotate_one(f, device, address, reg.value, protected, multi, reg.label, words)
-      if marked then status = "ambiguous" end
-      describe(device, f, reg, plain, status, words, next_reg and next_reg.value)
-    end
-  end
-  story.tell(f)
-end
-M.annotate_list, M.annotate_registers, M.describe = annotate_list, annotate_registers, describe
-M.frame_labels, M.plc_base, M.remember_list, M.remember_mask = frame_labels, plc_base, remember_list, remember_mask
-M.remember_writes, M.story, M.track, M.words_at = remember_writes, story, track, words_at
+M.annotate_registers, M.describe, M.frame_labels, M.plc_base = annotate_registers, describe, frame_labels, plc_base
+M.remember_mask, M.remember_writes, M.story, M.track = remember_mask, remember_writes, story, track
+M.words_at = words_at
 end
 
 -- ---- vw3.explain: lua/src/explain.lua ----
@@ -7659,8 +7626,7 @@ local function check_request(f, device)
 end
 
 -- The read-only parameters (map access R: row.read_only) a write request touches, named `ETA (3201)`
--- (access.written_read_only): FC6, FC16, FC23 by the registers written (a run; vw3_modbus.lua's requests: a
--- list, f.written), FC22 by its address.
+-- (access.written_read_only): FC6, FC16, FC23 by the registers written (a run), FC22 by its address.
 local REGISTER_WRITES, MASK_WRITTEN = DATA.rules.confirmed, DATA.rules.by_confirm.mask
 local READ_ONLY = "R" -- the access of a parameter no write changes (devices/access.py READ_ONLY)
 local NONE = {} -- (read only, never changed: a device without a read-only row has none to name)
@@ -7672,7 +7638,6 @@ local function written_read_only(f, device)
     if run ~= nil and run.start ~= nil and run.count ~= nil then
       for index = 0, run.count - 1 do addresses[#addresses + 1] = (run.start + index) % 0x10000 end
     end
-    for _, reg in ipairs(run == nil and f.written or {}) do addresses[#addresses + 1] = reg.address end
   elseif MASK_WRITTEN[code] and f.start ~= nil then
     addresses[1] = f.start
   end
@@ -7938,10 +7903,10 @@ local function identified(f)
   return nil
 end
 
--- The registers of an answer as { address, value } pairs (a run read from b, or vw3_modbus.lua's list).
+-- The registers of an answer as { address, value } pairs (a run read from b).
 local function register_list(f, b)
   local run = f.registers
-  if run == nil or run.count == nil then return run or {} end
+  if run == nil then return {} end
   local out = {}
   for index = 0, run.count - 1 do
     local address, value = register_at(run, b, index)
@@ -8082,18 +8047,12 @@ end
 -- A provisional frame kept, per slave until its choice, for the chosen device to annotate again
 -- (lane.annotate_again; annotator.py _held, _scratch): a copy the annotate path may change freely, taken before the frame is
 -- annotated and its bytes released (take_frame): its own runs (its request's too, with their bytes),
--- device objects and registers of vw3_modbus.lua's list, no notes or warnings. Bounded: a slave's frames
+-- device objects, no notes or warnings. Bounded: a slave's frames
 -- are provisional until FIT_FRAMES of them at most.
 local function hold(st, f, b)
   local copy = copied(f)
   copy.b, copy.notes, copy.warnings, copy.events = b, nil, nil, nil
-  local run = f.registers
-  if run ~= nil and run.count == nil then
-    copy.registers = {}
-    for index, reg in ipairs(run) do copy.registers[index] = { address = reg.address, value = reg.value } end
-  elseif run ~= nil then
-    copy.registers = copied(run)
-  end
+  if f.registers ~= nil then copy.registers = copied(f.registers) end
   if f.request ~= nil then
     copy.request = copied(f.request)
     copy.request.registers = f.request.registers and copied(f.request.registers)
@@ -8238,13 +8197,13 @@ package.preload["vw3.annotator"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, CONFIRMED, DATA, EXCEPTION, PROFILES, READS = AUTO, CONFIRMED, DATA, EXCEPTION, PROFILES, READS
-local REQUEST, RESPONSE, annotate_list, annotate_registers = REQUEST, RESPONSE, annotate_list, annotate_registers
-local check_request, check_writes, describe, device_of = check_request, check_writes, describe, device_of
-local diagnostics_note, explain_exception, explain_objects = diagnostics_note, explain_exception, explain_objects
-local frame_labels, ipairs, lane, pairs, parse_map_choice = frame_labels, ipairs, lane, pairs, parse_map_choice
+local REQUEST, RESPONSE, annotate_registers, check_request = REQUEST, RESPONSE, annotate_registers, check_request
+local check_writes, describe, device_of, diagnostics_note = check_writes, describe, device_of, diagnostics_note
+local explain_exception, explain_objects, frame_labels = explain_exception, explain_objects, frame_labels
+local ipairs, lane, pairs, parse_map_choice = ipairs, lane, pairs, parse_map_choice
 local parse_profile_choice, refused_registers, register_at = parse_profile_choice, refused_registers, register_at
-local remember_list, remember_mask, remember_writes, say = remember_list, remember_mask, remember_writes, say
-local select, span_label, track, trusted_request, verified = select, span_label, track, trusted_request, verified
+local remember_mask, remember_writes, say, select = remember_mask, remember_writes, say, select
+local span_label, track, trusted_request, verified = span_label, track, trusted_request, verified
 local words_at = words_at
 
 -- The codes whose echo confirms masks applied to the value held ([confirm] "mask": FC22).
@@ -8294,24 +8253,10 @@ end
 -- Profile auto chose a device with a frame (select_device): the slave's provisional frames (their copies,
 -- kept by hold) annotated again with it, as they would have been had it been known from the first (-2): it
 -- remembers of them what the one annotate path remembers, so a parameter read in one and 16#8000 now
--- `became protected` (annotator.py _observe). What they tell again is dropped with the copies.
+-- `became protected` (annotator.py _observe). What they tell again is dropped with the copies. (vw3_modbus.lua's
+-- frames too: its runs are over byte tables of their own.)
 function lane.annotate_again(st, device, held)
-  for _, copy in ipairs(held) do
-    local run = copy.registers
-    if run ~= nil and run.count == nil then -- (a frame of vw3_modbus.lua's: its annotate path, name_adu)
-      -- (the writes its answer confirms, `written`: FC23's before it reads; an FC22 echo's masks, `fields`;
-      -- then FC6's echo)
-      local seen = device.track and device.seen
-      if seen and copy.written ~= nil then remember_list(seen, copy.number, copy.written) end
-      if seen and copy.fields ~= nil then remember_mask(seen, copy.number, copy.fields) end
-      annotate_list(st, copy, device, run, copy.kind == RESPONSE and READS[copy.fn] ~= nil)
-      if seen and copy.kind == RESPONSE and CONFIRMED.echo[copy.fn] then
-        remember_list(seen, copy.number, run)
-      end
-    else
-      annotate_with(st, copy, copy.b, device)
-    end
-  end
+  for _, copy in ipairs(held) do annotate_with(st, copy, copy.b, device) end
 end
 
 -- The registers an exception 02 tells about (explain._all_unreadable): each address of the refused read,
@@ -10372,14 +10317,14 @@ package.preload["vw3.dissector"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.dissector"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, DissectorTable, MODE_REACH, Proto, READS = DATA, DissectorTable, MODE_REACH, Proto, READS
-local REQUEST, RESPONSE, add_register, add_text = REQUEST, RESPONSE, add_register, add_text
-local annotate_list, apply_prefs, device_now, dissect_now = annotate_list, apply_prefs, device_now, dissect_now
-local ended, ex, finish_all, ipairs, lane, mask_register = ended, ex, finish_all, ipairs, lane, mask_register
-local new_state, os, pack, package, pair_scan, pairs, pcall = new_state, os, pack, package, pair_scan, pairs, pcall
-local pf, pinfo_cols, pinfo_number, pinfo_port_type, proto = pf, pinfo_cols, pinfo_number, pinfo_port_type, proto
-local record_ns, sample_modes, show_record, stream_state = record_ns, sample_modes, show_record, stream_state
-local tostring, tree_text, tvb_raw, type, wtap = tostring, tree_text, tvb_raw, type, wtap
+local DATA, DissectorTable, MODE_REACH, Proto, REQUEST = DATA, DissectorTable, MODE_REACH, Proto, REQUEST
+local RESPONSE, add_register, add_text, apply_prefs = RESPONSE, add_register, add_text, apply_prefs
+local device_now, dissect_now, ended, ex, finish_all = device_now, dissect_now, ended, ex, finish_all
+local ipairs, lane, mask_register, new_state, os, pack = ipairs, lane, mask_register, new_state, os, pack
+local package, pair_scan, pairs, pcall, pf, pinfo_cols = package, pair_scan, pairs, pcall, pf, pinfo_cols
+local pinfo_number, pinfo_port_type, proto, record_ns = pinfo_number, pinfo_port_type, proto, record_ns
+local sample_modes, show_record, stream_state, tostring = sample_modes, show_record, stream_state, tostring
+local tree_text, tvb_raw, type, wtap = tree_text, tvb_raw, type, wtap
 
 -- A stream's mode, where no preference sets it, is told from its first bytes as vw3-decode tells it
 -- (protocol/ascii.py sample_mode: MODE_SAMPLE bytes, up to MODE_REACH after line noise), and those may
@@ -10591,8 +10536,8 @@ DissectorTable.get("udp.port"):add_for_decode_as(proto)
 -- file of its own so that serial captures pay nothing for it: its field extractors make Wireshark build
 -- a tree for every packet. (Each script has globals of its own; package.loaded is shared.)
 package.loaded.vw3_plugin = {
-  new_state = new_state, device_now = device_now, annotate_registers = annotate_list,
-  reads = READS, mask_register = mask_register,
+  new_state = new_state, device_now = device_now,
+  mask_register = mask_register,
   add_register = add_register, add_text = add_text, pf = pf, ex = ex, REQUEST = REQUEST, RESPONSE = RESPONSE,
 }
 

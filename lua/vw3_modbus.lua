@@ -140,43 +140,41 @@ local function written_at_most(fn)
   return rule and rule.values and rule.values.most
 end
 
--- The registers of an ADU with their value bytes (range), as Wireshark lists them (regnum16, regval), or
--- from modbus.data where Wireshark 4.0 lists none: FC6's reference, FC23's write window, and an FC23
--- answer's read window from its request.
+-- The registers of an ADU as the RTU plugin's runs (start, count; first: where their values start in the
+-- byte table b, its own) and b, their values' bytes: as Wireshark lists them (regnum16, regval: consecutive
+-- from the first), or from modbus.data where Wireshark 4.0 lists none: FC6's reference, FC23's write window,
+-- and an FC23 answer's read window from its request. nil: none.
 local function registers_of(adu, fn, request)
-  local registers = {}
   local numbers, values = fields_of(adu, "number"), fields_of(adu, "value")
+  local start, count, b = nil, 0, {}
   if numbers ~= nil and values ~= nil and #numbers > 0 then
-    local count = math.min(#numbers, #values)
+    start, count = numbers[1].value, math.min(#numbers, #values)
     local most = fields_of(adu, "request") == nil and written_at_most(fn)
     if most then -- (values past the quantity: no register written)
       count = math.min(count, first_value(fields_of(adu, most)) or count)
     end
     for index = 1, count do
-      local value = values[index]
-      registers[index] = { address = numbers[index].value, value = value.value, range = value.range }
+      local value = values[index].value
+      b[2 * index - 1], b[2 * index] = floor(value / 256), value % 256
     end
-    return registers
+  else
+    local data = fields_of(adu, "data")
+    data = data and data[1]
+    if data == nil then return nil end
+    count = floor(data.len / 2)
+    if fn == 6 then
+      start, count = first_value(fields_of(adu, "start")), math.min(count, 1)
+    elseif fn == 23 and fields_of(adu, "request") == nil then
+      start, count = first_value(fields_of(adu, "write_start")), math.min(count,
+        first_value(fields_of(adu, "write_quantity")) or 0)
+    elseif fn == 23 and request ~= nil and request.fn == 23 then
+      start, count = request.start, math.min(count, request.quantity or 0)
+    end
+    local bytes = data.range:bytes()
+    for k = 0, 2 * count - 1 do b[k + 1] = bytes:get_index(k) end
   end
-  local data = fields_of(adu, "data")
-  data = data and data[1]
-  if data == nil then return registers end
-  local start, count = nil, floor(data.len / 2)
-  if fn == 6 then
-    start, count = first_value(fields_of(adu, "start")), math.min(count, 1)
-  elseif fn == 23 and fields_of(adu, "request") == nil then
-    start, count = first_value(fields_of(adu, "write_start")), math.min(count,
-      first_value(fields_of(adu, "write_quantity")) or 0)
-  elseif fn == 23 and request ~= nil and request.fn == 23 then
-    start, count = request.start, math.min(count, request.quantity or 0)
-  end
-  if start == nil then return registers end
-  local range = data.range
-  for index = 0, count - 1 do
-    local bytes = range:range(2 * index, 2)
-    registers[index + 1] = { address = (start + index) % 0x10000, value = bytes:uint(), range = bytes }
-  end
-  return registers
+  if start == nil or count <= 0 then return nil end
+  return { start = start, count = count, first = 1, b = b }, b
 end
 
 -- The value ranges of an ADU's registers, in order (a later pass: the names were made on the first).
@@ -197,34 +195,16 @@ local function ranges_of(adu)
 end
 
 -- A request (first pass): kept until its answer comes, as the RTU plugin pairs it: its window (FC23:
--- the read one) and the registers it writes.
-local function remember_request(pinfo, adu, fn, slave, written)
+-- the read one) and the registers it writes (a run with its bytes, as the RTU plugin's request keeps them).
+local function remember_request(pinfo, adu, fn, slave, registers)
   if asked_count >= ASKED_LIMIT then asked, asked_count = {}, 0 end -- (requests never answered: bounded)
   local start = first_value(fields_of(adu, "start")) or first_value(fields_of(adu, "read_start"))
   local quantity = first_value(fields_of(adu, "quantity")) or first_value(fields_of(adu, "read_quantity"))
   local request = { kind = vw3.REQUEST, fn = fn % 128, start = start, quantity = quantity, slave = slave,
-    number = pinfo.number, written = written }
+    number = pinfo.number, registers = registers }
   asked[transaction_key(pinfo, true, adu.transaction)] = request
   asked_count = asked_count + 1
   return request
-end
-
--- A request checked against the device as the RTU plugin checks it (lua/src/annotator.lua): a function
--- it lacks, a quantity past its limit (checks.check_request; FC23's by the lifting rule's fields), a
--- read-only parameter written (access.check_writes: the registers written, FC22's address). The warnings.
-local function request_warnings(adu, request, device)
-  local fn = request.fn
-  local fields = {}
-  for _, key in ipairs({ "quantity", "read_quantity", "write_quantity" }) do
-    fields[key] = first_value(fields_of(adu, key))
-  end
-  local asking = { fn = fn, start = request.start, written = request.written, fields = fields,
-    quantity = fields.quantity or first_value(fields_of(adu, "bit_count")),
-    subfunction = first_value(fields_of(adu, "subfunction")),
-    function_text = device.profile.function_names[fn] }
-  env.check_request(asking, device)
-  env.check_writes(asking, device)
-  return asking.warnings or {}
 end
 
 local function answered(pinfo, adu)
@@ -232,17 +212,6 @@ local function answered(pinfo, adu)
   local request = asked[key]
   if request ~= nil then asked[key], asked_count = nil, asked_count - 1 end
   return request
-end
-
--- Writes the device confirmed go into the parameter story, as the RTU plugin's ([confirm]: FC6's echo,
--- FC16's and FC23's answer): a later 16#8000 there is told against the value written.
-local function remember_writes(device, number, registers)
-  if not device.track then return end
-  for _, reg in ipairs(registers) do
-    local value = reg.value
-    env.remember_writes(device.seen, number, { start = reg.address, count = 1, first = 1 },
-      { floor(value / 256), value % 256 })
-  end
 end
 
 -- An exception (first pass) explained as the RTU plugin explains it (explain_exception): the device's
@@ -266,7 +235,10 @@ local function masks_of(adu)
 end
 
 -- One ADU, first pass (in capture order: the protection story and profile auto follow it): what its
--- tree shows, or false. A request is remembered, an answer paired; registers are named.
+-- tree shows, or false. A request is remembered, an answer paired; the frame is annotated by the RTU
+-- plugin's own path (lua/src/annotator.lua, annotate_with): a request checked against the device (a
+-- function it lacks, a quantity past its limit, a read-only parameter written), the writes its answer or
+-- echo confirms and an FC22 echo's masks remembered, the registers judged (16#8000).
 local function name_adu(pinfo, adu)
   local fn = first_value(fields_of(adu, "code"))
   if fn == nil then return false end
@@ -275,52 +247,52 @@ local function name_adu(pinfo, adu)
   if code ~= nil then return explain(pinfo, adu, fn, code, slave) end
   local response = fields_of(adu, "request") ~= nil
   local request = response and answered(pinfo, adu) or nil
-  local registers = registers_of(adu, fn % 128, request)
-  local asking = not response and remember_request(pinfo, adu, fn, slave, registers)
-  local f = { slave = slave, fn = fn % 128, kind = response and vw3.RESPONSE or vw3.REQUEST,
-    registers = registers, notes = {}, warnings = {}, number = pinfo.number, unit_zero = true }
-  local confirmed = response and request ~= nil and request.written ~= nil and #request.written > 0
-    and env.CONFIRMED.answer[f.fn]
-  -- (kept with the frame: profile auto, choosing later, remembers them again when it names the frame anew)
-  if confirmed then f.written = request.written end
-  -- (an FC22 echo: the masks it confirms, kept with the frame as `written` is)
-  if response and MASK_WRITES[f.fn] then f.fields = masks_of(adu) end
-  if #registers == 0 then
-    -- (an FC16 answer or an FC22 echo: no registers to name; the writes it confirms count, held as any
-    -- frame before a choice. A request: checked against the device. FC22's request and echo: their
-    -- register shown, as the RTU plugin's tree.lua add_pdu shows it)
-    local masks = MASK_WRITES[f.fn] and masks_of(adu)
-    local device = (confirmed or masks or asking) and vw3.device_now(names_state, f)
-    if device and confirmed then remember_writes(device, pinfo.number, request.written) end
-    if device and f.fields ~= nil and device.track then
-      env.remember_mask(device.seen, pinfo.number, f.fields)
+  local run, b = registers_of(adu, fn % 128, request)
+  local f = { slave = slave, fn = fn % 128, kind = response and vw3.RESPONSE or vw3.REQUEST, registers = run,
+    request = request, notes = {}, warnings = {}, number = pinfo.number, unit_zero = true }
+  local masks = MASK_WRITES[f.fn] and masks_of(adu)
+  if response then
+    f.fields = masks or nil -- (an FC22 echo: the masks it confirms, as the RTU plugin's f.fields)
+  else
+    -- (what the request's checks read, as the RTU plugin's decoded fields: lua/src/explain.lua, check_request)
+    remember_request(pinfo, adu, fn, slave, run)
+    f.fields = {}
+    for _, key in ipairs({ "quantity", "read_quantity", "write_quantity" }) do
+      f.fields[key] = first_value(fields_of(adu, key))
     end
-    local shown = {}
-    if device and masks then
-      local base = env.plc_base(device, f)
-      shown[1] = vw3.mask_register(masks.address, masks.and_mask, masks.or_mask,
-        base and env.PLC_LABELS[base][masks.address] or nil)
-    end
-    local warnings = device and asking and request_warnings(adu, asking, device) or {}
-    if #shown == 0 and #warnings == 0 then return false end
-    return { registers = shown, notes = f.notes, warnings = warnings, device = device, slave = slave }
+    f.quantity = f.fields.quantity or first_value(fields_of(adu, "bit_count"))
+    f.subfunction, f.start = first_value(fields_of(adu, "subfunction")), first_value(fields_of(adu, "start"))
   end
-  local device = vw3.device_now(names_state, f)
+  if masks then f.start = masks.address end -- (its PLC label, f.span_label, for FC22's register)
+  -- (an answer of no registers, FC16's: only where it confirms writes, as an FC22 echo)
+  local confirmed = response and request ~= nil and request.registers ~= nil and env.CONFIRMED.answer[f.fn]
+  if run == nil and not (confirmed or masks or not response) then return false end
+  local device = vw3.device_now(names_state, f, b)
   if not device then return false end
-  if confirmed then remember_writes(device, pinfo.number, request.written) end -- (FC23 writes, then reads)
-  vw3.annotate_registers(names_state, f, device, registers, response and vw3.reads[f.fn] ~= nil)
-  if response and env.CONFIRMED.echo[f.fn] then remember_writes(device, pinfo.number, registers) end
-  local warnings = asking and request_warnings(adu, asking, device) or {}
-  return { registers = registers, notes = f.notes, warnings = warnings, device = device, slave = slave }
+  env.annotate_with(names_state, f, b, device)
+  if run == nil and not masks and #f.warnings == 0 then return false end
+  return { f = f, b = b, masks = masks, notes = f.notes, warnings = f.warnings, device = device, slave = slave }
 end
 
-local function add_tree(tvb, tree, done, whole_range)
+-- The registers a named ADU shows: an exception's inferred ones, or the run's as the RTU plugin's display
+-- finds them again from the run and its bytes (register_view: row, text, status), or FC22's register.
+local function shown_registers(named)
+  if named.f == nil then return named.registers end
+  local f, run, masks, out = named.f, named.f.registers, named.masks, {}
+  for index = 0, (run and run.count or 0) - 1 do
+    out[index + 1] = env.register_view(names_state, f, run, named.b, index)
+  end
+  if masks then out[#out + 1] = vw3.mask_register(masks.address, masks.and_mask, masks.or_mask, f.span_label) end
+  return out
+end
+
+local function add_tree(tvb, tree, done, registers, whole_range)
   local warnings = done.warnings or {}
-  if #done.registers == 0 and #done.notes == 0 and #warnings == 0 then return end
+  if #registers == 0 and #done.notes == 0 and #warnings == 0 then return end
   local t = tree:add(names_proto, whole_range)
   t:set_text(format("VW3 register names (%s, unit %d)", done.device.profile.title, done.slave))
   local fake = { offset = 0, at = 0, bi = 0, length = tvb:len(), data_at = 2, data_len = 0 }
-  for _, reg in ipairs(done.registers) do vw3.add_register(t, tvb, fake, reg, reg.range or whole_range) end
+  for _, reg in ipairs(registers) do vw3.add_register(t, tvb, fake, reg, reg.range or whole_range) end
   for _, text in ipairs(warnings) do vw3.add_text(t:add(pf.warning, whole_range, text), ex.warning, text) end
   for _, text in ipairs(done.notes) do vw3.add_text(t:add(pf.note, whole_range, text), ex.note, text) end
 end
@@ -340,14 +312,14 @@ function names_proto.dissector(tvb, pinfo, tree)
     local named = done[index]
     if named then
       -- (the ranges are this dissection's: a later pass shows the names made on the first)
-      local ranges = ranges_of(adu)
-      for at, reg in ipairs(named.registers) do reg.range = ranges[at] end
+      local ranges, registers = ranges_of(adu), shown_registers(named)
+      for at, reg in ipairs(registers) do reg.range = ranges[at] end
       local whole_range = tvb:range(0, tvb:len())
       if adu.fi ~= nil then
         local source = adu.fi.source
         whole_range = source:range(adu.start, math.min(adu.stop, source:len()) - adu.start)
       end
-      add_tree(tvb, tree, named, whole_range)
+      add_tree(tvb, tree, named, registers, whole_range)
     end
   end
 end

@@ -51,24 +51,10 @@ end
 -- Profile auto chose a device with a frame (select_device): the slave's provisional frames (their copies,
 -- kept by hold) annotated again with it, as they would have been had it been known from the first (-2): it
 -- remembers of them what the one annotate path remembers, so a parameter read in one and 16#8000 now
--- `became protected` (annotator.py _observe). What they tell again is dropped with the copies.
+-- `became protected` (annotator.py _observe). What they tell again is dropped with the copies. (vw3_modbus.lua's
+-- frames too: its runs are over byte tables of their own.)
 function lane.annotate_again(st, device, held)
-  for _, copy in ipairs(held) do
-    local run = copy.registers
-    if run ~= nil and run.count == nil then -- (a frame of vw3_modbus.lua's: its annotate path, name_adu)
-      -- (the writes its answer confirms, `written`: FC23's before it reads; an FC22 echo's masks, `fields`;
-      -- then FC6's echo)
-      local seen = device.track and device.seen
-      if seen and copy.written ~= nil then remember_list(seen, copy.number, copy.written) end
-      if seen and copy.fields ~= nil then remember_mask(seen, copy.number, copy.fields) end
-      annotate_list(st, copy, device, run, copy.kind == RESPONSE and READS[copy.fn] ~= nil)
-      if seen and copy.kind == RESPONSE and CONFIRMED.echo[copy.fn] then
-        remember_list(seen, copy.number, run)
-      end
-    else
-      annotate_with(st, copy, copy.b, device)
-    end
-  end
+  for _, copy in ipairs(held) do annotate_with(st, copy, copy.b, device) end
 end
 
 -- The registers an exception 02 tells about (explain._all_unreadable): each address of the refused read,

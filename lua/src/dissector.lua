@@ -214,8 +214,8 @@ DissectorTable.get("udp.port"):add_for_decode_as(proto)
 -- file of its own so that serial captures pay nothing for it: its field extractors make Wireshark build
 -- a tree for every packet. (Each script has globals of its own; package.loaded is shared.)
 package.loaded.vw3_plugin = {
-  new_state = new_state, device_now = device_now, annotate_registers = annotate_list,
-  reads = READS, mask_register = mask_register,
+  new_state = new_state, device_now = device_now,
+  mask_register = mask_register,
   add_register = add_register, add_text = add_text, pf = pf, ex = ex, REQUEST = REQUEST, RESPONSE = RESPONSE,
 }
 

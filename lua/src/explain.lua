@@ -48,8 +48,7 @@ local function check_request(f, device)
 end
 
 -- The read-only parameters (map access R: row.read_only) a write request touches, named `ETA (3201)`
--- (access.written_read_only): FC6, FC16, FC23 by the registers written (a run; vw3_modbus.lua's requests: a
--- list, f.written), FC22 by its address.
+-- (access.written_read_only): FC6, FC16, FC23 by the registers written (a run), FC22 by its address.
 local REGISTER_WRITES, MASK_WRITTEN = DATA.rules.confirmed, DATA.rules.by_confirm.mask
 local READ_ONLY = "R" -- the access of a parameter no write changes (devices/access.py READ_ONLY)
 local NONE = {} -- (read only, never changed: a device without a read-only row has none to name)
@@ -61,7 +60,6 @@ local function written_read_only(f, device)
     if run ~= nil and run.start ~= nil and run.count ~= nil then
       for index = 0, run.count - 1 do addresses[#addresses + 1] = (run.start + index) % 0x10000 end
     end
-    for _, reg in ipairs(run == nil and f.written or {}) do addresses[#addresses + 1] = reg.address end
   elseif MASK_WRITTEN[code] and f.start ~= nil then
     addresses[1] = f.start
   end

@@ -67,10 +67,10 @@ local function identified(f)
   return nil
 end
 
--- The registers of an answer as { address, value } pairs (a run read from b, or vw3_modbus.lua's list).
+-- The registers of an answer as { address, value } pairs (a run read from b).
 local function register_list(f, b)
   local run = f.registers
-  if run == nil or run.count == nil then return run or {} end
+  if run == nil then return {} end
   local out = {}
   for index = 0, run.count - 1 do
     local address, value = register_at(run, b, index)
@@ -211,18 +211,12 @@ end
 -- A provisional frame kept, per slave until its choice, for the chosen device to annotate again
 -- (lane.annotate_again; annotator.py _held, _scratch): a copy the annotate path may change freely, taken before the frame is
 -- annotated and its bytes released (take_frame): its own runs (its request's too, with their bytes),
--- device objects and registers of vw3_modbus.lua's list, no notes or warnings. Bounded: a slave's frames
+-- device objects, no notes or warnings. Bounded: a slave's frames
 -- are provisional until FIT_FRAMES of them at most.
 local function hold(st, f, b)
   local copy = copied(f)
   copy.b, copy.notes, copy.warnings, copy.events = b, nil, nil, nil
-  local run = f.registers
-  if run ~= nil and run.count == nil then
-    copy.registers = {}
-    for index, reg in ipairs(run) do copy.registers[index] = { address = reg.address, value = reg.value } end
-  elseif run ~= nil then
-    copy.registers = copied(run)
-  end
+  if f.registers ~= nil then copy.registers = copied(f.registers) end
   if f.request ~= nil then
     copy.request = copied(f.request)
     copy.request.registers = f.request.registers and copied(f.request.registers)

@@ -86,11 +86,6 @@ local function remember_writes(seen, number, run, b)
   end
 end
 
--- The same for a list of registers { address, value } (vw3_modbus.lua's frames, annotate_list's lists).
-local function remember_list(seen, number, registers)
-  for _, reg in ipairs(registers) do remember(seen, reg.address, reg.value, number, "written") end
-end
-
 -- A Mask Write its echo confirms ([confirm] "mask", memory.remember_mask): the register holds (current AND
 -- and_mask) OR (or_mask AND NOT and_mask) (Application Protocol 6.16); where the current value is not known
 -- (and_mask 0 replaces every bit), the parameter is forgotten.
@@ -245,34 +240,6 @@ local function annotate_registers(f, device, run, b, read)
     if status ~= nil and status ~= "ok" then
       run.status = run.status or {}
       run.status[index] = status
-    end
-  end
-  story.tell(f)
-end
-
--- The same for a list of registers { address, value } (the Modbus/TCP naming of vw3_modbus.lua): each
--- gets its row, label, scaled value, text, status and words.
-local function annotate_list(st, f, device, registers, read)
-  local protected = read and device.profile.protected_value or nil
-  local base = plc_base(device, f)
-  local count = #registers
-  local multi = count > 1
-  local marked = false
-  if multi and protected ~= nil
-      and all_marked(f, device, count, function(index) return registers[index + 1].value end, protected) then
-    protected, marked = nil, true
-  end
-  for index, reg in ipairs(registers) do
-    local address = reg.address
-    if address ~= nil then
-      if base ~= nil then reg.label = PLC_LABELS[base][address] end
-      local words = words_at(device.rows, address, index - 1, count)
-      local next_reg = registers[index + 1]
-      if words == 2 and (next_reg == nil or next_reg.address ~= (address + 1) % 0x10000) then words = 1 end
-      if words == 0 and registers[index - 1].address ~= (address + 0xFFFF) % 0x10000 then words = 1 end
-      local plain, status = annotate_one(f, device, address, reg.value, protected, multi, reg.label, words)
-      if marked then status = "ambiguous" end
-      describe(device, f, reg, plain, status, words, next_reg and next_reg.value)
     end
   end
   story.tell(f)

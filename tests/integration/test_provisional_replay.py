@@ -174,8 +174,8 @@ TCP_CASES = {
 
 @pytest.mark.parametrize("name", sorted(TCP_CASES))
 def test_modbus_tcp_names_reading_once(tmp_path: Path, name: str) -> None:
-    """vw3_modbus.lua's frames are annotated again by their own path: a list of registers by annotate_list,
-    an exception by explain_exception."""
+    """vw3_modbus.lua's frames are annotated again by the RTU plugin's path (annotate_with: their registers a
+    run over bytes of their own), an exception by explain_exception."""
     pairs, expected = TCP_CASES[name]
     writer = NetWriter(tmp_path / "mbtcp.pcap")
     time = 1.0
