@@ -20,6 +20,7 @@ from dissector.decode.fastpath import fast_parse
 from dissector.decode.pairing import trusted_request
 from dissector.protocol import table
 from dissector.protocol.grammar import GrammarError, parse_pdu
+from dissector.protocol.layouts import text_when_printable
 from dissector.protocol.printable import bytes_text
 from dissector.protocol.rules import (
     LIFTS, REQUEST_PREFIX, Echo, Lift, Names, Parts, Test, ValueKind, echo_text, range_text, text,
@@ -341,9 +342,12 @@ _RUN_VALUES = frozenset(SPEC.names["run_indicator"])  # 00 OFF, FF ON
 def _report_server_id_response(frame: Frame, fields: Container) -> None:
     """The spec's server id is device specific in length (Application Protocol 6.17), the run indicator the
     byte after it: the layout reads a one-byte id (libmodbus); a longer id (pymodbus: a name, the run
-    indicator last) has a run indicator further on. Only an answer with no 00 or FF after its first byte has
-    none where any id length puts it; a byte count of 1 (the layout's ?(byte_count-1)) holds the id alone,
-    the spec's run indicator is missing; a byte count of 0 neither."""
+    indicator last) has a run indicator further on. Where the byte after a one-byte id is no run indicator
+    (00 OFF, FF ON) and a later one is, the fields are read again with the id up to the first of them (text
+    where printable, as additional data is): `server id 'Pymodbus', run ON`, not the one-byte reading's
+    wrong split `server id 80, run 121, 7 bytes`; warned, as the length is read from the bytes. Only an
+    answer with no 00 or FF after its first byte has none where any id length puts it; a byte count of 1
+    (the layout's ?(byte_count-1)) holds the id alone, the spec's run indicator is missing; 0 neither."""
     indicator = fields["run_indicator"]
     if fields["server_id"] is None:  # (byte count 0: the layout's ?(byte_count))
         frame.warnings.append(text("no_server_id", count=fields["byte_count"]))
@@ -355,11 +359,10 @@ def _report_server_id_response(frame: Frame, fields: Container) -> None:
         if end is None:
             frame.warnings.append(text("run_indicator", value=int(indicator)))
         else:  # (the id runs to the first 00 or FF after its first byte: pymodbus's name, then FF)
-            server_id = data[:end]
-            shown = (repr(server_id.decode("ascii")) if all(0x20 <= byte < 0x7F for byte in server_id)
-                     else server_id.hex(" ").upper())
-            frame.warnings.append(text("longer_server_id", value=int(indicator), server_id=shown,
-                                       run=SPEC.names["run_indicator"][data[end]]))
+            fields["server_id"] = text_when_printable(data[:end])
+            fields["run_indicator"] = SPEC.names["run_indicator"][data[end]]
+            fields["additional_data"] = text_when_printable(data[end + 1 :])
+            frame.warnings.append(text("server_id_read_longer", count=end, value=int(indicator)))
 
 
 _DEVICE_ID = 14  # FC43's MEI type Read Device Identification (protocol/table.py)

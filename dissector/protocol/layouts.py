@@ -36,11 +36,16 @@ from dissector.protocol.spec import SPEC
 _trailing = "trailing" / GreedyBytes
 
 
+def text_when_printable(data: bytes) -> str | bytes:
+    """Bytes as text when every one is printable ASCII (a version string), as bytes otherwise."""
+    return data.decode("ascii") if data and all(0x20 <= byte < 0x7F for byte in data) else data
+
+
 class _TextWhenPrintable(Adapter):  # type: ignore[misc]
-    """Bytes shown as text when every one is printable ASCII (a version string), as bytes otherwise."""
+    """A text(n) field: text_when_printable."""
 
     def _decode(self, obj: bytes, context: object, path: str) -> str | bytes:
-        return obj.decode("ascii") if obj and all(0x20 <= byte < 0x7F for byte in obj) else obj
+        return text_when_printable(obj)
 
     def _encode(self, obj: str | bytes, context: object, path: str) -> bytes:
         return obj.encode("ascii") if isinstance(obj, str) else obj

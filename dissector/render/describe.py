@@ -346,7 +346,15 @@ def _report_server_id(frame: Frame, request: bool) -> str:
         return f"server id {fields.server_id}"
     data = fields.additional_data
     text = repr(data) if isinstance(data, str) else count_text(len(data), "byte")
-    return f"server id {fields.server_id}, run {fields.run_indicator}, {text}"
+    return f"server id {_server_id(fields.server_id)}, run {fields.run_indicator}, {text}"
+
+
+def _server_id(server_id: int | str | bytes) -> str:
+    """A one-byte id as its number; a longer one (decode/fields.py reads it up to the run indicator) as its
+    text where printable (`'Pymodbus'`), else its bytes (`12 34 56`)."""
+    if isinstance(server_id, int):
+        return str(server_id)
+    return repr(server_id) if isinstance(server_id, str) else server_id.hex(" ").upper()
 
 
 def _file_record(frame: Frame, request: bool) -> str:

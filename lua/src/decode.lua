@@ -263,10 +263,9 @@ local SPECIAL = {
       for k = f.data_at + count, first + 1, -1 do ends = names[b[k]] ~= nil and k or ends end
       if ends == nil then
         warn(f, say("run_indicator", { value = run })) -- (OFF, ON: none where any length of server id puts it)
-      else -- (the id runs to the first 00 or FF after its first byte: fields.py _report_server_id_response)
-        local text = printable_ascii(b, first, ends - 1)
-        local shown = text and python_repr(text) or hex_of(b, first, ends - 1, "%02X", " ")
-        warn(f, say("longer_server_id", { value = run, server_id = shown, run = names[b[ends]] }))
+      else -- (the id is read up to the first 00 or FF after its first byte: fields.py _report_server_id_response)
+        f.server_id_size = ends - first -- (tree.lua shows the id, its run indicator and data so split)
+        warn(f, say("server_id_read_longer", { count = ends - first, value = run }))
       end
     end
   end,

@@ -167,6 +167,14 @@ local function counted_size(field, count)
   return n
 end
 
+-- b[at..at+size-1] under the field as_text where every byte is printable ASCII (as vw3-decode), else as_bytes.
+local function add_text_or_bytes(t, tvb, f, b, at, size, as_text, as_bytes)
+  if size <= 0 then return end
+  local text = printable_ascii(b, at, at + size - 1)
+  if text then t:add(as_text, frame_range(tvb, f, at, size), text)
+  else t:add(as_bytes, frame_range(tvb, f, at, size)) end
+end
+
 -- The fields of `shape` read from b[at] on, the data ending before b[stop], added to `t` (nil: only
 -- measured); where they end, or nil when one does not fit (a record that ends its records: grammar.py).
 -- (values: a table to keep the fields' values in, for a shape measured again and again)
@@ -212,10 +220,8 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
           for k = at, at + size - 2, 2 do t:add(pf[shown[1]], frame_range(tvb, f, k, 2), u16(b, k)) end
         elseif kind == "odd" then
           t:add(pf[shown[1]], frame_range(tvb, f, at, 1), b[at])
-        elseif kind == "text" then -- (as text where every byte is printable ASCII, as vw3-decode)
-          local text = printable_ascii(b, at, at + size - 1)
-          if text then t:add(pf[shown[1]], frame_range(tvb, f, at, size), text)
-          else t:add(pf[shown[2]], frame_range(tvb, f, at, size)) end
+        elseif kind == "text" then
+          add_text_or_bytes(t, tvb, f, b, at, size, pf[shown[1]], pf[shown[2]])
         else
           t:add(pf[shown[1]], frame_range(tvb, f, at, size))
         end
@@ -236,13 +242,25 @@ local function mask_register(address, and_mask, or_mask, label, offset)
     value = and_mask == 0 and or_mask or nil, text = say(and_mask == 0 and "mask_written" or "mask_prior", masks) }
 end
 
+-- FC17's fields where lua/src/decode.lua read a server id longer than one byte (size bytes, up to its run
+-- indicator), as vw3-decode -V lists them (decode/fields.py _report_server_id_response); where they end.
+local function add_server_id(t, tvb, f, b, size)
+  t:add(pf.byte_count, frame_range(tvb, f, 2, 1), b[2])
+  add_text_or_bytes(t, tvb, f, b, 3, size, pf.server_id_text, pf.server_id_bytes)
+  t:add(pf.run_indicator, frame_range(tvb, f, 3 + size, 1), b[3 + size])
+  add_text_or_bytes(t, tvb, f, b, 4 + size, b[2] - 1 - size, pf.additional_data, pf.additional_bytes)
+  return 3 + b[2]
+end
+
 -- The PDU's fields of a frame that parsed (not an exception's: its code is shown as such), under `t`, the
 -- bytes after them (vw3-decode -V's `Trailing: aabb`); an FC22's register after them.
 local function add_pdu(t, tvb, f, stop)
   local name = layout_of(f.kind, f.fn)
   if f.malformed or #LAYOUTS[name] == 0 then return end
   local b = frame_bytes(f, tvb)
-  local at = add_shape(t, tvb, f, b, LAYOUTS[name], 2, stop)
+  local at
+  if f.server_id_size then at = add_server_id(t, tvb, f, b, f.server_id_size)
+  else at = add_shape(t, tvb, f, b, LAYOUTS[name], 2, stop) end
   if at ~= nil and at < stop then t:add(pf.trailing, frame_range(tvb, f, at, stop - at)) end
   if MASK_WRITES[f.fn] then
     local places = DATA.field_places[name]
@@ -324,14 +342,21 @@ function BY_NAME.mei(f, b, base)
 end
 
 -- describe._report_server_id: an answer's `server id 18, run ON, 'V1.'` (its data as text where every byte
--- is printable ASCII, else counted).
+-- is printable ASCII, else counted). A longer id (lua/src/decode.lua read it up to its run indicator:
+-- f.server_id_size) as its text, `'Pymodbus'`, or its bytes, `12 34 56`.
 function BY_NAME.report_server_id(f, b, base)
   if f.kind == REQUEST or b[base + 2] == 0 then return "" end -- (byte count 0: no server id)
   if b[base + 2] < 2 then return "server id " .. DECIMAL[b[base + 3]] end -- (byte count 1: the id alone)
-  local count, run = b[base + 2] - 2, b[base + 4]
-  local text = count > 0 and printable_ascii(b, base + 5, base + 4 + count)
+  local size = f.server_id_size or 1
+  local count, run, after = b[base + 2] - 1 - size, b[base + 3 + size], base + 4 + size
+  local text = count > 0 and printable_ascii(b, after, after + count - 1)
   local data = text and python_repr(text) or count_text(count, "byte")
-  return "server id " .. DECIMAL[b[base + 3]] .. ", run " .. (RUN_INDICATOR[run] or DECIMAL[run]) .. ", " .. data
+  local id = DECIMAL[b[base + 3]]
+  if size > 1 then
+    local shown = printable_ascii(b, base + 3, base + 2 + size)
+    id = shown and python_repr(shown) or hex_of(b, base + 3, base + 2 + size, "%02X", " ")
+  end
+  return "server id " .. id .. ", run " .. (RUN_INDICATOR[run] or DECIMAL[run]) .. ", " .. data
 end
 
 -- describe._file_record: `2 record group(s)`, the sub-requests, sub-responses or records its byte count holds.

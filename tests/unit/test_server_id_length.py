@@ -1,7 +1,7 @@
 """FC17's server id is device specific in length (Application Protocol 6.17), its run indicator the byte after
 it: pymodbus answers with a name as the id and the run indicator last, which the one-byte reading took for
-`run 101`: it is warned that 0x65 is no run indicator and the id probably runs to the first 00 or FF
-after its first byte (tests/integration/test_report_server_id_longer.py). Only an answer with no 00 or FF
+`run 101`: the id is read up to the first 00 or FF after its first byte, warned
+(tests/integration/test_report_server_id_longer.py). Only an answer with no 00 or FF
 after its first byte has no run indicator where any id length puts it. Same lines under the engine and VW3_PURE_PYTHON=1; the plugin's in
 tests/integration/test_lua_server_id_length.py."""
 from __future__ import annotations
@@ -23,12 +23,12 @@ def test_only_an_answer_without_any_run_indicator_is_warned(monkeypatch: pytest.
     status, out, err = run_cli(args)
     assert (status, err) == (0, "")
     assert out.splitlines()[1::2] == [
-        "     2            -  12 response  Report Server ID server id 84, run 101, 29 bytes [#1] "
-        "[warning: run indicator 0x65 is neither 0x00 (OFF) nor 0xFF (ON): the server id is probably "
-        "'Telemecanique-ATV71HU15M3-0201', then run ON]  CRC ok",
-        "     4            -  12 response  Report Server ID server id 1, run 2, 2 bytes [#3] "
-        "[warning: run indicator 0x02 is neither 0x00 (OFF) nor 0xFF (ON): the server id is probably 01 02, "
-        "then run ON]  CRC ok",
+        "     2            -  12 response  Report Server ID server id 'Telemecanique-ATV71HU15M3-0201', run ON, "
+        "0 bytes [#1] [warning: server id of 30 bytes, up to the first 00 (OFF) or FF (ON) after its first byte: "
+        "after a one-byte id, 0x65 is no run indicator]  CRC ok",
+        "     4            -  12 response  Report Server ID server id 01 02, run ON, 'A' [#3] "
+        "[warning: server id of 2 bytes, up to the first 00 (OFF) or FF (ON) after its first byte: after a "
+        "one-byte id, 0x02 is no run indicator]  CRC ok",
         "     6            -  12 response  Report Server ID server id 1, run 2, 2 bytes [#5] "
         "[warning: run indicator 0x02 is neither 0x00 (OFF) nor 0xFF (ON)]  CRC ok",
     ]
