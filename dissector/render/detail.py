@@ -5,11 +5,9 @@ is decided once and a terminal only adds colour.
 """
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from operator import attrgetter
-from datetime import datetime, timezone
 from typing import TYPE_CHECKING, Any
 
 from construct import ListContainer
@@ -23,7 +21,7 @@ from dissector.render.detail_window import NESTED_HEX_WIDTHS, hex_width, implied
 from dissector.render.filter_fields import CATALOGUE
 from dissector.render.registers import MASKS, mask_register
 from dissector.render.summary import check_untyped, crc_text, noise_info
-from dissector.render.timefmt import whole_micros
+from dissector.render.timefmt import MICRO_DIGITS, arrival_line
 
 if TYPE_CHECKING:
     from rich.text import Text
@@ -40,37 +38,6 @@ class Node:
         child = Node(label, style=style)
         self.children.append(child)
         return child
-
-
-def _utc(seconds: float) -> str:
-    # datetime.fromtimestamp's own rounding (CPython _PyTime_DoubleToDenominator, half to even): the
-    # whole second's text is kept (a capture's frames share their seconds), the microseconds appended.
-    if not math.isfinite(seconds):
-        return f"{seconds:.6f}"
-    if type(seconds) is not float and getattr(seconds, "ns", None) is not None:
-        whole, micros = whole_micros(seconds)  # a Stamp: its integer nanoseconds (year 1 keeps them)
-    else:
-        fraction, whole = math.modf(seconds)
-        micros = round(fraction * 1e6)
-        if micros >= 1_000_000:
-            micros -= 1_000_000
-            whole += 1.0
-        elif micros < 0:
-            micros += 1_000_000
-            whole -= 1.0
-    second = _SECONDS.get(whole)
-    if second is None:
-        try:
-            moment = datetime.fromtimestamp(whole, tz=timezone.utc)
-        except (OverflowError, OSError, ValueError):
-            return f"{seconds:.6f}"
-        if len(_SECONDS) >= 4096:
-            _SECONDS.clear()
-        second = _SECONDS[whole] = f"{moment.year:04d}-{moment:%m-%d %H:%M:%S}"
-    return f"{second}.{micros:06d} UTC"
-
-
-_SECONDS: dict[float, str] = {}  # a whole second's `YYYY-MM-DD HH:MM:SS` (bounded)
 
 
 # A detail is laid out once, as a flat list of texts that carry their indentation (four spaces a
@@ -476,8 +443,8 @@ def _body_lines(detail: _Detail, frame: Frame) -> None:
         detail.styled(f"        {check}: 0x{frame.crc:0{width}X} [{crc_text(frame)}]", style)
 
 
-def _build(item: Item, base: float | None, joined: bool) -> _Detail:
-    """The detail of one item; the root has no indentation."""
+def _build(item: Item, base: float | None, joined: bool, digits: int = MICRO_DIGITS) -> _Detail:
+    """The detail of one item; the root has no indentation; `digits`: its Arrival time's decimals."""
     detail = _Detail(joined)
     out = detail.texts
     add = out.append
@@ -493,7 +460,7 @@ def _build(item: Item, base: float | None, joined: bool) -> _Detail:
     mode = "RTU" if rtu else frame.mode.upper()
     add(f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}, {_KIND_TEXT[kind]} ({mode})")
     if frame.time is not None:
-        add(f"    Arrival time: {_utc(frame.time)} ({frame.time - (base or 0.0):.6f} s since the first item)")
+        add(arrival_line(frame.time, base, digits))
     add(_MODBUS_RTU if rtu else f"    Modbus {mode}")
     if (
         joined and kind is not _EXCEPTION and not frame.registers and frame.bits is None and frame.objects is None
@@ -542,16 +509,16 @@ def _depth(text: str) -> int:
     return (len(text) - len(text.lstrip(" "))) // 4
 
 
-def detail_lines(item: Item, base: float | None = None) -> list[Line]:
+def detail_lines(item: Item, base: float | None = None, digits: int = MICRO_DIGITS) -> list[Line]:
     """The detail of one item as (depth, text, style) lines, the root at depth 0; texts are indented."""
-    detail = _build(item, base, joined=False)
+    detail = _build(item, base, False, digits)
     styles = detail.styles
     return [(_depth(text), text, styles.get(index)) for index, text in enumerate(detail.texts)]
 
 
-def detail_tree(item: Item, base: float | None = None) -> Node:
+def detail_tree(item: Item, base: float | None = None, digits: int = MICRO_DIGITS) -> Node:
     """The detail as a tree of Nodes (what a terminal draws)."""
-    lines = detail_lines(item, base)
+    lines = detail_lines(item, base, digits)
     _depth0, label, style = lines[0]
     root = Node(label, style=style)
     path = [root]

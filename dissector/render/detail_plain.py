@@ -18,7 +18,6 @@ from dissector.render.detail import (
     _LINE_LABEL_HEADS,
     _MIDDLES,
     _REGISTER_KEY,
-    _SECONDS,
     _WORDS,
     _build,
     _Detail,
@@ -27,16 +26,17 @@ from dissector.render.detail import (
     _kept_text,
     _middle,
     _profile_line,
-    _utc,
 )
 from dissector.render.summary import check_untyped
+from dissector.render.timefmt import MICRO_DIGITS, SECONDS, arrival_line
 
 
-def detail_text(item: Item, base: float | None = None) -> str:
-    """The plain -V text of one item (render_plain(detail_tree(...)), without the tree)."""
+def detail_text(item: Item, base: float | None = None, digits: int = MICRO_DIGITS) -> str:
+    """The plain -V text of one item (render_plain(detail_tree(...)), without the tree); `digits`: its
+    Arrival time's decimals (render/timefmt.py detail_digits)."""
     if type(item) is Frame:
-        return plain_frame_text(item, base)
-    return "\n".join(_build(item, base, joined=True).texts)
+        return plain_frame_text(item, base, digits)
+    return "\n".join(_build(item, base, True, digits).texts)
 
 
 # `, request (RTU)` and `\n    Modbus RTU` by (kind, mode): the fixed words of a frame's first lines.
@@ -70,23 +70,6 @@ _VALUE_PARTS: dict[tuple[Any, ...], list[Any]] = {}
 _VALUE_PARTS_MAX = 1 << 10
 _CRC_OK_TAILS: dict[int, str] = {}
 _NS = 1_000_000_000
-
-
-
-
-def _arrival(time: float, base: float | None) -> str:
-    """`    Arrival time: ... UTC (0.017823 s since the first item)`: from the integer nanoseconds of
-    a Stamp and its base (what _utc and Stamp.__sub__ give), else as _build writes it."""
-    if type(time) is Stamp and type(base) is Stamp:
-        whole, rest = divmod(time.ns, _NS)
-        micros = round(rest / 1000)  # whole_micros
-        if micros == 1_000_000:
-            whole, micros = whole + 1, 0
-        second = _SECONDS.get(whole)
-        if second is not None:
-            return (f"    Arrival time: {second}.{micros:06d} UTC "
-                    f"({(time.ns - base.ns) / _NS:.6f} s since the first item)")  # type: ignore[attr-defined]
-    return f"    Arrival time: {_utc(time)} ({time - (base or 0.0):.6f} s since the first item)"
 
 
 def _block_middle(frame: Frame, registers: Sequence[Register], untyped: bool) -> str:
@@ -144,7 +127,7 @@ def _values_middle(frame: Frame, registers: RegisterList) -> str | None:
     return "".join(parts)
 
 
-def plain_frame_text(frame: Frame, base: float | None) -> str:
+def plain_frame_text(frame: Frame, base: float | None, digits: int = MICRO_DIGITS) -> str:
     """_build(frame, base, joined=True), joined, with no _Detail for what needs none: every frame
     pays this, so its fixed lines are one format and a polled request's middle one lookup."""
     kind, mode = frame.kind, frame.mode
@@ -153,19 +136,19 @@ def plain_frame_text(frame: Frame, base: float | None) -> str:
     head = None
     if time is None:
         head = f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}{words[1]}"
-    elif type(time) is Stamp and type(base) is Stamp:  # _arrival's text, in one f-string
+    elif type(time) is Stamp and type(base) is Stamp and digits == MICRO_DIGITS:  # arrival_line's, in one f-string
         whole, rest = divmod(time.ns, _NS)  # type: ignore[attr-defined]
         micros = round(rest / 1000)  # whole_micros
         if micros == 1_000_000:
             whole, micros = whole + 1, 0
-        second = _SECONDS.get(whole)
+        second = SECONDS.get(whole)
         if second is not None:
             head = (f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}\n"
                     f"    Arrival time: {second}.{str(1_000_000 + micros)[1:]} UTC "  # micros:06d
                     f"({(time.ns - base.ns) / _NS:.6f} s since the first item){words[1]}")  # type: ignore[attr-defined]
     if head is None:
         head = (f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}\n"
-                f"{_arrival(time, base)}{words[1]}")  # type: ignore[arg-type]
+                f"{arrival_line(time, base, digits)}{words[1]}")  # type: ignore[arg-type]
     registers = frame.registers
     listed = type(registers) is RegisterList
     # (a RegisterList's own len() is a Python call)

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, TextIO
 from dissector.model import Frame, Item
 from dissector.protocol.printable import printable
 from dissector.render.summary import summary_line, summary_text, typed_bytes
-from dissector.render.timefmt import Clock
+from dissector.render.timefmt import Clock, detail_digits
 
 # The writers of -V, -x, --json and -T are imported by the output that uses them (a one-frame summary
 # starts faster without them).
@@ -210,7 +210,7 @@ class Output:
                 self._write_rich(item)
                 continue
             elif options.detail:
-                text = detail_text(item, clock.first)
+                text = detail_text(item, clock.first, detail_digits(clock.units))
                 out.append(text)
                 size += len(text)
                 if options.hexdump:
@@ -259,10 +259,10 @@ class Output:
 
         out = self._buffer
         append = out.append
-        first = self.clock.first
+        first, digits = self.clock.first, detail_digits(self.clock.units)
         size = 0
         for item in items:
-            text = plain_frame_text(item, first) if type(item) is Frame else detail_text(item, first)
+            text = plain_frame_text(item, first, digits) if type(item) is Frame else detail_text(item, first, digits)
             append(text)
             append("")
             size += len(text)
@@ -309,7 +309,7 @@ class Output:
             from dissector.render.detail import detail_tree, render_rich
 
 
-            console.print(render_rich(detail_tree(item, self.clock.first)))
+            console.print(render_rich(detail_tree(item, self.clock.first, detail_digits(self.clock.units))))
         else:
             console.print(summary_text(item, column=self.clock.text(item)))
         if self.options.hexdump:

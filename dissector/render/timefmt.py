@@ -6,11 +6,13 @@ tshark does; only `dd` (delta displayed) looks at what was shown.
 """
 from __future__ import annotations
 
+import math
 import time as _time
 from dataclasses import dataclass, field
+from datetime import datetime, timezone
 
 from dissector.model import Item, Stamp
-from dissector.render.pcapwriter import NANOS
+from dissector.render.pcapwriter import MICROS, NANOS
 
 # -t value -> what tshark calls it (for --help and error messages)
 TIME_FORMATS: dict[str, str] = {
@@ -36,6 +38,7 @@ NOT_REPRESENTABLE = "Not representable"
 # tshark's time precisions (wiretap's WTAP_TSPREC: s, ds, cs, ms, us, ns): the decimals of its time column.
 PRECISIONS = (0, 1, 2, 3, 6, 9)
 MICRO_DIGITS = 6  # a pcap's, a text log's, a live line's: microseconds
+NANO_DIGITS = 9  # a nanosecond pcap's; the finest tshark holds (its nstime)
 
 
 def column_digits(units: int | None) -> int:
@@ -45,6 +48,14 @@ def column_digits(units: int | None) -> int:
     if not units:
         return MICRO_DIGITS
     return max(digits for digits in PRECISIONS if 10**digits <= units)
+
+
+def detail_digits(units: int | None) -> int:
+    """The decimals of -V's Arrival time (and its "since the first item") for a file whose times are in
+    1/`units` s: 9, as tshark -V's Arrival Time shows its nanoseconds, where microseconds cannot hold them
+    (a nanosecond pcap, if_tsresol 10^-7 or 2^-10, where the column shows 6 or 3: -w's rule,
+    app/inputs.py write_units); else 6, as always."""
+    return NANO_DIGITS if units and (units > MICROS or MICROS % units) else MICRO_DIGITS
 
 
 def whole_fraction(seconds: float, digits: int = MICRO_DIGITS, cut: bool = False) -> tuple[int, int]:
@@ -84,7 +95,7 @@ def _clock_text(seconds: float, utc: bool, date: bool, digits: int = MICRO_DIGIT
         return NOT_REPRESENTABLE
 
 
-def _signed_text(ns: int, digits: int, cut: bool) -> str:
+def signed_text(ns: int, digits: int, cut: bool) -> str:
     """Seconds from integer nanoseconds, to `digits` decimals, its sign apart (cut toward zero, as tshark)."""
     whole, fraction = whole_fraction(Stamp(abs(ns)), digits, cut)
     return f"{'-' if ns < 0 and (whole or fraction) else ''}{whole}{_decimals(fraction, digits)}"
@@ -141,7 +152,7 @@ class Clock:
         cut = self.units is not None
         if fmt == "e":
             ns = getattr(time, "ns", None)  # (a float near 1.7e9 s keeps 0.2 us: not 9 decimals)
-            return f"{time:.{self.digits}f}" if ns is None else _signed_text(ns, self.digits, cut)
+            return f"{time:.{self.digits}f}" if ns is None else signed_text(ns, self.digits, cut)
         return _clock_text(time, utc=fmt.startswith("u"), date=fmt.endswith("d"), digits=self.digits, cut=cut)
 
     def _since(self, time: float, reference: float | None) -> str:
@@ -150,7 +161,7 @@ class Clock:
         if reference is None:
             reference = time
         if self.units is not None and isinstance(time, Stamp) and isinstance(reference, Stamp):
-            return _signed_text(time.ns - reference.ns, self.digits, True)
+            return signed_text(time.ns - reference.ns, self.digits, True)
         return f"{time - reference:.{self.digits}f}"
 
     def seconds(self, item: Item, key: str) -> str | None:
@@ -172,3 +183,45 @@ class Clock:
         before = self._before
         if before:
             self._before = {id(item): before[id(item)] for item in items if id(item) in before}
+
+
+def utc_text(seconds: float, digits: int = MICRO_DIGITS) -> str:
+    """-V's `YYYY-MM-DD HH:MM:SS.ffffff UTC` of a time, to `digits` decimals."""
+    # datetime.fromtimestamp's own rounding (CPython _PyTime_DoubleToDenominator, half to even): the
+    # whole second's text is kept (a capture's frames share their seconds), the microseconds appended.
+    if not math.isfinite(seconds):
+        return f"{seconds:.{digits}f}"
+    if digits != MICRO_DIGITS or type(seconds) is not float and getattr(seconds, "ns", None) is not None:
+        whole, micros = whole_fraction(seconds, digits)  # a Stamp: its integer nanoseconds (year 1 keeps them)
+    else:
+        fraction, whole = math.modf(seconds)
+        micros = round(fraction * 1e6)
+        if micros >= 1_000_000:
+            micros -= 1_000_000
+            whole += 1.0
+        elif micros < 0:
+            micros += 1_000_000
+            whole -= 1.0
+    second = SECONDS.get(whole)
+    if second is None:
+        try:
+            moment = datetime.fromtimestamp(whole, tz=timezone.utc)
+        except (OverflowError, OSError, ValueError):
+            return f"{seconds:.{digits}f}"
+        if len(SECONDS) >= 4096:
+            SECONDS.clear()
+        second = SECONDS[whole] = f"{moment.year:04d}-{moment:%m-%d %H:%M:%S}"
+    return f"{second}.{micros:0{digits}d} UTC"
+
+
+def arrival_line(time: float, base: float | None, digits: int = MICRO_DIGITS) -> str:
+    """`    Arrival time: ... UTC (0.017823 s since the first item)` to `digits` decimals: past 6, two
+    Stamps' difference from their integer nanoseconds (a float near 1.7e9 s keeps 0.2 us)."""
+    if digits != MICRO_DIGITS and type(time) is Stamp and type(base) is Stamp:
+        since = signed_text(time.ns - base.ns, digits, True)  # type: ignore[attr-defined]
+    else:
+        since = f"{time - (base or 0.0):.{digits}f}"
+    return f"    Arrival time: {utc_text(time, digits)} ({since} s since the first item)"
+
+
+SECONDS: dict[float, str] = {}  # a whole second's `YYYY-MM-DD HH:MM:SS` (bounded)

@@ -182,6 +182,6 @@ def test_arrival_time_text_is_datetimes(seconds: float) -> None:
     """-V's `Arrival time` keeps each second's text and appends the microseconds: it must be what
     datetime.fromtimestamp gives (its rounding half to even carries into the next second), out of range
     and non-finite times included."""
-    from dissector.render.detail import _utc
+    from dissector.render.timefmt import utc_text
 
-    assert _utc(seconds) == _utc_reference(seconds)
+    assert utc_text(seconds) == _utc_reference(seconds)
