@@ -17,6 +17,7 @@ from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 from dissector.render.describe import value_names
 from dissector.render.registers import MASKS, mask_register
 from dissector.render.summary import check_untyped
+from dissector.render.timefmt import MICRO_DIGITS, NANO_DIGITS, detail_digits, signed_text
 
 
 def register_to_dict(register: Register) -> dict[str, Any]:
@@ -133,6 +134,19 @@ def _tail(frame: Frame, out: dict[str, Any], with_bits: bool = True, lists: bool
     out["warnings"] = list(frame.warnings)
     out["notes"] = list(frame.notes)
     return out
+
+
+def exact_time(text: str, time: float | None, units: int | None) -> str:
+    """An item's JSON `text` (or a --watch change's) with its "time" written to 9 decimals from its
+    integer nanoseconds where microseconds cannot hold the capture's times (render/timefmt.py
+    detail_digits: a nanosecond pcap, if_tsresol 10^-7 or 2^-10): a double near 1.7e9 s keeps ~0.2 us
+    (1767225600.0090182 of .009018123). A JSON number still; others' times as json writes a float. The
+    first "time" key is the one: only fixed keys and numbers come before it (frame, kind, offset, length)."""
+    ns = getattr(time, "ns", None)
+    if ns is None or detail_digits(units) == MICRO_DIGITS:
+        return text
+    shown = float.__repr__(time)  # type: ignore[arg-type]
+    return text.replace(f'"time": {shown}', f'"time": {signed_text(ns, NANO_DIGITS, True)}', 1)
 
 
 def item_to_dict(item: Item, fields: bool = True) -> dict[str, Any]:

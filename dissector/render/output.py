@@ -173,7 +173,7 @@ class Output:
             self._write_details(items)
             return
         if options.records:
-            from dissector.render.jsonout import item_to_dict, item_to_json
+            from dissector.render.jsonout import exact_time, item_to_dict, item_to_json
         if options.detail:
             from dissector.render.detail_plain import detail_text
         if options.hexdump:
@@ -204,6 +204,8 @@ class Output:
                         for key in self.fields.time_keys:
                             record[key] = clock.seconds(item, key)
                         text = self.fields.line(record)
+                if self.fields is None and clock.units is not None:
+                    text = exact_time(text, item.time, clock.units)  # (a nanosecond capture's digits)
                 out.append(text)
                 size += len(text)
             elif self.console is not None:

@@ -63,6 +63,7 @@ class Change:
     broadcast: bool = False  # a broadcast write: every slave written, whatever their states were (old: ?)
     # The input of its frame when several files are one bus (their frame numbers restart with each file).
     file: str | None = None
+    units: int | None = None  # its capture's time units a second: the JSON time's digits (jsonout.exact_time)
 
     def line(self) -> str:
         name = self.code or self.label or str(self.address)
@@ -361,7 +362,7 @@ class Watcher:
             return  # the same once named by the same device
         self.on_change(Change(pending.frame.time, pending.frame.number, slave, address, code, old_text, new_text,
                               unit, pending.column, provisional, pending.time_relative,
-                              table_label(label, table, address), old is None, self.source))
+                              table_label(label, table, address), old is None, self.source, self.clock.units))
 
     def _label(self, slave: int, function: int, address: int) -> str | None:
         """The address as the summary shows it under --address-style (devices.naming.plc_label), or None."""
@@ -469,9 +470,10 @@ def printer(write: Callable[[str], None], as_json: bool, file: str | None = None
     own file (several files one bus) is its JSON `file`, and a `==> FILE <==` line over its file's first
     line, as the summary titles each file's items."""
     if as_json:
-        if file is not None:
-            return lambda change: write(json.dumps({**change.record(), "file": file}) + "\n")
-        return lambda change: write(json.dumps(change.record()) + "\n")
+        from dissector.render.jsonout import exact_time
+
+        extra = {} if file is None else {"file": file}
+        return lambda change: write(exact_time(json.dumps(change.record() | extra), change.time, change.units) + "\n")
     titled: list[str | None] = [None]
 
     def line(change: Change) -> None:
