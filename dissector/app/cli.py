@@ -35,9 +35,9 @@ from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.app.inputs import (
-    CopyEnd, choose_over_all, choose_profiles_first, comments_of, holds_ascii, input_line, inputs, is_pcapng_file,
-    item_pieces, keep_interface, observe_records, profile_notes, several_captures, tell_comments, write_interface,
-    write_units,
+    CopyEnd, choose_over_all, choose_profiles_first, comments_of, first_interface_units, holds_ascii, input_line,
+    inputs, is_pcapng_file, item_pieces, keep_interface, observe_records, profile_notes, several_captures,
+    tell_comments, write_interface, write_units,
 )
 from dissector.sources.reader import SourceError
 from dissector.sources.trail import RecordTrail
@@ -144,13 +144,14 @@ class Sinks:
                 first = args.files[0] if args.files and not args.hex else None
                 interface = write_interface(first, "pcapng" if args.format in (None, "pcapng") else None, args)
                 self.pcap = open_output(args.write, args.file_format, args.ring, False, stdout, interface,
-                                        write_units(args.files, env.stdin, args.format), args.frame_records)
+                                        write_units(args.files, env.stdin, args.format), args.frame_records,
+                                        first_interface_units(first, args.format, env.stdin))
             except ValueError as error:
                 raise UsageError(str(error)) from None
             except OSError as error:
                 raise UsageError(f"-w {args.write}: {error.strerror or error}") from None
-        # The warnings that pcap loses a description's line speed, and a pcapng's buses apart, were given.
-        self.speed_lost = self.buses_joined = False
+        # The warnings that pcap loses a description's line speed, a pcapng's buses apart, a time resolution.
+        self.speed_lost = self.buses_joined = self.resolution_lost = False
         self.extra: dict[str, object] | None = None
         self.frames_left: int | None = args.count  # -c: items (frames and noise runs) still to show
         self.wrote: str | None = None  # the report written (said last, on a terminal)
@@ -411,7 +412,7 @@ def _decode_inputs(
                 sinks.watch.clock.units = units  # (its lines' column, as the summary's)
             sinks.restart_times()
             if sinks.pcap is not None:
-                keep_interface(sinks, args, env, path, source_format, line, bus)
+                keep_interface(sinks, args, env, path, source_format, line, bus, units)
             sinks.extra = {"file": title} if title is not None else None
 
             def warn() -> None:

@@ -18,6 +18,7 @@ from dissector.app.rings import RingSource, group_files
 from dissector.framing.linespeed import FROM_PCAPNG, LineSettings, line_settings, settings_from_text
 from dissector.model import Chunk, Item, stamped_before
 from dissector.render.capturefile import CaptureOutput, Interface, pcapng_interface
+from dissector.render.pcapngwriter import resolution_text, tsresol
 from dissector.render.pcapwriter import MICROS, NANOS
 from dissector.sources.interfaces import PacketInterface, open_interface, packet_interfaces
 from dissector.sources.pcap import MAGICS, is_pcap
@@ -197,10 +198,34 @@ def stdin_interfaces(head: bytes) -> list[RecordedInterface]:
     return found
 
 
-def keep_interface(sinks: Any, args: DecodeOptions, env: Any, path: str | None,
-                    source_format: str | None, line: LineSettings, bus: PacketInterface | None = None) -> None:
-    assert sinks.pcap is not None
-    sinks.pcap.use_interface(write_interface(path, source_format, args, bus))
+def first_interface_units(path: str | None, fmt: str | None, stdin: Any = None) -> int | None:
+    """The time units a -w pcapng's first interface keeps (keep_interface's of the first input): a pcapng
+    file's first interface with packets, standard input's finest described at its head; None for others."""
+    if path is None or fmt not in (None, "pcapng"):
+        return None
+    if path == "-":
+        piped = hasattr(stdin, "peek") and not stdin.isatty()
+        return max((found.units for found in stdin_interfaces(stdin.peek(STDIN_HEAD) if piped else b"")), default=None)
+    buses = packet_interfaces(path)  # ([] for a FIFO: not read here)
+    return buses[0].interface.units if buses else None
+
+
+def keep_interface(sinks: Any, args: DecodeOptions, env: Any, path: str | None, source_format: str | None,
+                   line: LineSettings, bus: PacketInterface | None = None, units: int | None = None) -> None:
+    """-w: the input's interface (and a pcapng's time units, `units`: its if_tsresol, as editcap and tshark
+    -w keep it), and warnings, once, of what the copy cannot keep."""
+    pcap = sinks.pcap
+    assert pcap is not None
+    kept = units if source_format == "pcapng" else None
+    pcap.use_interface(write_interface(path, source_format, args, bus), kept)
+    if kept is not None and not sinks.resolution_lost and (
+            kept != pcap.units if pcap.format == "pcap" else kept != MICROS and tsresol(kept) is None):
+        sinks.resolution_lost = True  # (pcap: microseconds or nanoseconds; pcapng: 10^-n or 2^-n up to 2^64)
+        env.stderr.write(
+            f"{PROG}: warning: -w {shown(args.write)}: {pcap.format} cannot hold the time resolution of "
+            f"{shown(path or '')} (if_tsresol {resolution_text(kept)}): its times are written in "
+            f"{'nanoseconds' if pcap.units == NANOS else 'microseconds'}"
+            f"{' (write pcapng, -F pcapng, to keep it)' if pcap.format == 'pcap' else ''}\n")
     if sinks.pcap.format == "pcap" and line.source == FROM_PCAPNG and not sinks.speed_lost:
         # tshark -F pcap drops the interface silently; the line speed read there would be lost unseen.
         sinks.speed_lost = True

@@ -63,7 +63,7 @@ class RecordWriter(Protocol):
     def write(self, data: bytes, timestamp: float | None = None,
               comment: str | list[str] | None = None) -> None: ...
 
-    def use_interface(self, name: str | None, description: str | None) -> None: ...
+    def use_interface(self, name: str | None, description: str | None, units: int | None = None) -> None: ...
 
     def close(self) -> None: ...
 
@@ -182,16 +182,18 @@ class CaptureOutput:
         interface: Interface | None = None,
         units: int = MICROS,
         frame_records: bool = False,
+        interface_units: int | None = None,
     ) -> None:
         self.path = path
         # --frame-records: an item is one record at its time, not the reads it came in (write_items)
         self._frame_records = frame_records
-        self._units = units  # of its times: a decode of a nanosecond capture writes nanoseconds
+        self.units = units  # of its times (pcapng: of interfaces without their own): a nanosecond capture's, ns
         self.format = file_format(path, fmt)
         self.ring = ring
         self._flush = flush
         self._stdout = stdout
         self._interface = interface  # (if_name, if_description) for pcapng
+        self._interface_units = interface_units  # its own (a copied pcapng interface's if_tsresol), or None
         self._writer: RecordWriter | None = None
         self._number = 0
         self._opened = 0.0
@@ -245,10 +247,10 @@ class CaptureOutput:
         try:
             if self.format == "pcapng":
                 name, description = self._interface or (None, None)
-                self._writer = PcapngWriter(binary, flush=self._flush, if_name=name,
-                                            if_description=description, units=self._units)
+                self._writer = PcapngWriter(binary, flush=self._flush, if_name=name, if_description=description,
+                                            units=self.units, if_units=self._interface_units)
             else:
-                self._writer = PcapWriter(binary, flush=self._flush, units=self._units)
+                self._writer = PcapWriter(binary, flush=self._flush, units=self.units)
         except OSError:
             self._close_writer()
             raise
@@ -308,15 +310,16 @@ class CaptureOutput:
             os.replace(old, new)
             self.paths[-1] = self._kept[-1] = new
 
-    def use_interface(self, interface: Interface | None) -> None:
-        """The interface the next records were captured on (the next input of a decode): pcapng
-        describes it (a new interface block when it differs), pcap has no place for it."""
-        if interface == self._interface:
+    def use_interface(self, interface: Interface | None, units: int | None = None) -> None:
+        """The interface the next records were captured on (the next input of a decode) and its time
+        units (a pcapng's if_tsresol; None: the file's): pcapng describes it (a new interface block when it
+        differs), pcap has no place for it."""
+        if (interface, units) == (self._interface, self._interface_units):
             return
         self.release()  # a held noise run belongs to the input before
-        self._interface = interface
+        self._interface, self._interface_units = interface, units
         if self._writer is not None:
-            self._writer.use_interface(*(interface or (None, None)))
+            self._writer.use_interface(*(interface or (None, None)), units)
 
     def write_items(self, items: list[Item], pieces: dict[int, list[Piece]] | None = None,
                     settled: int | None = None) -> None:
@@ -583,6 +586,7 @@ def open_output(
     interface: Interface | None = None,
     units: int = MICROS,
     frame_records: bool = False,
+    interface_units: int | None = None,
 ) -> CaptureOutput:
     """The -w output from the options; ValueError for bad -b options, OSError from the system."""
     ring = Ring.parse(list(ring_specs)) if ring_specs else None
@@ -592,4 +596,4 @@ def open_output(
         # Binary records would garble the terminal (tshark and dumpcap refuse it too).
         raise ValueError("-w -: standard output is a terminal; pipe it (| wireshark -k -i -) or give a file")
     return CaptureOutput(path, fmt, ring, flush=flush, stdout=stdout, interface=interface, units=units,
-                         frame_records=frame_records)
+                         frame_records=frame_records, interface_units=interface_units)

@@ -21,11 +21,15 @@ MICROS, NANOS = 1_000_000, 1_000_000_000  # a format's time units per second
 
 
 def split_time(timestamp: float, units: int = MICROS) -> tuple[int, int]:
-    """(seconds, fraction in 1/`units` s) as pcap stores them; the reader's seconds + fraction / units
-    gives it back."""
+    """(seconds, fraction in 1/`units` s) as pcap and pcapng store them; the reader's seconds + fraction /
+    units gives it back (a pcapng's units: any if_tsresol, 2^-10 s or 10^-3 s as microseconds)."""
     ns = getattr(timestamp, "ns", None)  # a Stamp keeps its source's integer nanoseconds
     if ns is not None:
-        return divmod(int(ns) // (NANOS // units), units)  # type: ignore[return-value]
+        if NANOS % units == 0:
+            return divmod(int(ns) // (NANOS // units), units)  # type: ignore[return-value]
+        # 2^-10 s (or finer than ns): the tick the reader cut these nanoseconds from (Stamp.from_parts), the
+        # one whose cut gives them back (editcap's cut writes 166 of 167/1024 s: .163085937 read back .162109375)
+        return divmod(-(-int(ns) * units // NANOS), units)  # type: ignore[return-value]
     seconds = int(timestamp)
     fraction = int(round((timestamp - seconds) * units))
     if fraction >= units:
@@ -77,7 +81,7 @@ class PcapWriter:
         if self._flush:
             self._stream.flush()
 
-    def use_interface(self, name: str | None, description: str | None) -> None:
+    def use_interface(self, name: str | None, description: str | None, units: int | None = None) -> None:
         """pcap has no interface description: nothing to write (CaptureOutput warns of a lost line speed)."""
 
     def close(self) -> None:
