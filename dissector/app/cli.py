@@ -162,9 +162,11 @@ class Sinks:
 
         return new_bus(self, annotate)
 
-    def new_input(self, key: object, title: str | None, annotate: Annotator | None, mode: str, line: object) -> None:
+    def new_input(self, key: object, title: str | None, annotate: Annotator | None, mode: str, line: object,
+                  units: int | None = None) -> None:
         """An input of the bus `key` (render/buses.py: None, the files read as one stream; a pcapng's
-        interface otherwise): its counts become the current ones."""
+        interface otherwise): its counts become the current ones; `units`: its time units a second, whose
+        precision the time column, --watch's lines and -V show (tshark's: 9 decimals of a nanosecond pcap)."""
         from dissector.render.buses import header, title as bus_title
         from dissector.render.watch import printer
 
@@ -173,6 +175,9 @@ class Sinks:
         bus = self.buses.switch(key, title, annotate, cited)
         heard, self.current = self.current, bus
         self.stats, self.bus, self.watch, self.health = bus.stats, bus.timing, bus.watch, bus.health
+        self.clock.units = units
+        if self.watch is not None:
+            self.watch.clock.units = units  # (its lines' column, as the summary's)
         if self.report is not None:
             self.report.collector = bus.report
         if self.bus is not None:
@@ -404,12 +409,9 @@ def _decode_inputs(
                 # Another bus's slave 12 is not the first bus's: a device of its own (as the run's before any
                 # frame), its own profile choices (auto) and counts (--stats, --watch).
                 annotate = devices.setdefault(key, annotate if not devices else copy.deepcopy(pristine))
-            sinks.new_input(key, title, annotate, mode, line)
+            sinks.new_input(key, title, annotate, mode, line, units)
             # no ==> header over nothing; with -Y none over a file with no match
             sinks.output.new_input(title if sinks.show else None, held=sinks.predicate is not None)
-            sinks.clock.units = units  # tshark's precision: 9 decimals of a nanosecond pcap
-            if sinks.watch is not None:
-                sinks.watch.clock.units = units  # (its lines' column, as the summary's)
             sinks.restart_times()
             if sinks.pcap is not None:
                 keep_interface(sinks, args, env, path, source_format, line, bus, units)
