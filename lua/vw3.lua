@@ -9232,12 +9232,13 @@ package.preload["vw3.tree"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.tree"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, MASK_WRITES = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, MASK_WRITES
-local NO_INTERPRETATION, PARAMETER_FIELDS, REQUEST, concat = NO_INTERPRETATION, PARAMETER_FIELDS, REQUEST, concat
-local describe, device_of, ex, exception_name, floor = describe, device_of, ex, exception_name, floor
-local format, function_name, hex_of, hex_pairs, ipairs = format, function_name, hex_of, hex_pairs, ipairs
-local made_once, math, pf, printable_ascii, python_repr = made_once, math, pf, printable_ascii, python_repr
-local say, string, tostring, u16, words_at = say, string, tostring, u16, words_at
+local ByteArray, DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS = ByteArray, DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS
+local MASK_WRITES, NO_INTERPRETATION, PARAMETER_FIELDS = MASK_WRITES, NO_INTERPRETATION, PARAMETER_FIELDS
+local REQUEST, concat, describe, device_of, ex = REQUEST, concat, describe, device_of, ex
+local exception_name, floor, format, function_name, hex_of = exception_name, floor, format, function_name, hex_of
+local hex_pairs, ipairs, made_once, math, pf = hex_pairs, ipairs, made_once, math, pf
+local printable_ascii, python_repr, say, string, table = printable_ascii, python_repr, say, string, table
+local tostring, u16, words_at = tostring, u16, words_at
 
 -- `1 byte`, `2 bytes`: a count and its noun, singular for one (describe.count_text).
 local function count_text(count, noun)
@@ -9402,12 +9403,20 @@ local function counted_size(field, count)
   return n
 end
 
+-- The range a field of bytes is added on (its value): the frame's own bytes, or an ASCII frame's bytes that
+-- its hex pairs stand for, a data source of their own, as vw3-decode -V shows them (`Data: 1234`, not the
+-- pairs' characters 31323334). (TreeItem:add takes no value for a field of bytes: it reads the range's.)
+local function bytes_range(tvb, f, b, at, size)
+  if not f.ascii then return frame_range(tvb, f, at, size) end
+  return ByteArray.new(string.char(table.unpack(b, at, at + size - 1)), true):tvb("VW3 ASCII data"):range(0, size)
+end
+
 -- b[at..at+size-1] under the field as_text where every byte is printable ASCII (as vw3-decode), else as_bytes.
 local function add_text_or_bytes(t, tvb, f, b, at, size, as_text, as_bytes)
   if size <= 0 then return end
   local text = printable_ascii(b, at, at + size - 1)
   if text then t:add(as_text, frame_range(tvb, f, at, size), text)
-  else t:add(as_bytes, frame_range(tvb, f, at, size)) end
+  else t:add(as_bytes, bytes_range(tvb, f, b, at, size)) end
 end
 
 -- The fields of `shape` read from b[at] on, the data ending before b[stop], added to `t` (nil: only
@@ -9458,7 +9467,7 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
         elseif kind == "text" then
           add_text_or_bytes(t, tvb, f, b, at, size, pf[shown[1]], pf[shown[2]])
         else
-          t:add(pf[shown[1]], frame_range(tvb, f, at, size))
+          t:add(pf[shown[1]], bytes_range(tvb, f, b, at, size))
         end
       end
       at = at + size
@@ -9496,7 +9505,7 @@ local function add_pdu(t, tvb, f, stop)
   local at
   if f.server_id_size then at = add_server_id(t, tvb, f, b, f.server_id_size)
   else at = add_shape(t, tvb, f, b, LAYOUTS[name], 2, stop) end
-  if at ~= nil and at < stop then t:add(pf.trailing, frame_range(tvb, f, at, stop - at)) end
+  if at ~= nil and at < stop then t:add(pf.trailing, bytes_range(tvb, f, b, at, stop - at)) end
   if MASK_WRITES[f.fn] then
     local places = DATA.field_places[name]
     local reg = mask_register(u16(b, places.address.at), u16(b, places.and_mask.at), u16(b, places.or_mask.at),
