@@ -25,6 +25,7 @@ from typing import BinaryIO, TextIO
 from dissector.app.live import StopFlag, interface_description, live_framer
 from dissector.app.live_capture import CaptureFiles, CaptureThread, Handoff, silence_threshold
 from dissector.errors import ExitStatus, LiveError
+from dissector.framing.timing import LineTiming
 from dissector.render.capturefile import STDOUT, CaptureOutput
 from dissector.sources.serial_port import PortSettings, open_port
 
@@ -172,7 +173,8 @@ def capture(args: argparse.Namespace, port_name: str, err: TextIO, prog: str) ->
             if stream is None:
                 return ExitStatus.OK  # stopped, or nobody came to read
             output = FifoOutput(stream, args.fifo, (settings.port, description(args, settings)))
-            thread = CaptureThread(port, live_framer(mode, settings.baud), CaptureFiles(output, None),
+            rtu = None if mode == "ascii" else LineTiming(settings.baud)  # (CaptureFiles._records)
+            thread = CaptureThread(port, live_framer(mode, settings.baud), CaptureFiles(output, None, rtu),
                                    Handoff(limit=0), silence_threshold(settings.baud), port_name=settings.port,
                                    closing_record=False)
             thread.start()

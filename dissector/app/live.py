@@ -49,6 +49,7 @@ from dissector.app.options import shown  # typed names are data: control charact
 from dissector.app.live_view import LineSink, LiveStats, OutputPump, RichSink, Sink, json_line
 from dissector.errors import ExitStatus, LiveError
 from dissector.framing.ascii import AsciiFramer
+from dissector.framing.timing import LineTiming
 from dissector.framing.rtu import RtuFramer
 from dissector.model import Item, Stamp
 from dissector.pipeline import Annotator, Dissector
@@ -428,7 +429,8 @@ def run_live(
         err.write(f"{PROG}: {shown(error)}\n")
         return error.status
     try:
-        files = CaptureFiles(capture_output(args, getattr(out, "buffer", None)), args.raw)
+        rtu = None if live_mode(args) == "ascii" else LineTiming(args.baud)  # (-w: CaptureFiles._records)
+        files = CaptureFiles(capture_output(args, getattr(out, "buffer", None)), args.raw, rtu)
     except LiveError as error:
         if port is not None:
             port.close()

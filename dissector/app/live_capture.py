@@ -41,9 +41,11 @@ from collections.abc import Iterator
 import serial
 
 from dissector.errors import ExitStatus, LiveError, PortVanished
-from dissector.model import Chunk, Frame, Item, Stamp, up_to_items
+from dissector.framing.timing import LineTiming, line_silence
+from dissector.model import Frame, Item, Noise, Stamp, up_to_items
 from dissector.pipeline import Framer
 from dissector.render.capturefile import CaptureOutput, noise_comment
+from dissector.render.pcapwriter import SNAPLEN
 from dissector.render.describe import count_text
 from dissector.sources.serial_port import reason
 from dissector.sources.serial_times import ReadClock, char_time
@@ -74,10 +76,11 @@ def stamp_now() -> Stamp:
 
 
 class CaptureFiles:
-    """--raw (bytes as read) and -w (one record an item), both written before anything is shown."""
+    """--raw (bytes as read) and -w (one record an item, _records), both written before anything is shown."""
 
-    def __init__(self, output: CaptureOutput | None, raw_path: str | None) -> None:
+    def __init__(self, output: CaptureOutput | None, raw_path: str | None, timing: LineTiming | None = None) -> None:
         self.output = output
+        self._timing = timing  # RTU's: where the line gave no silence after a noise run (_records)
         self._raw_path = raw_path
         self._raw: BinaryIO | None = None
         self.last_time: Stamp | None = None  # the time of the last item written (-c: where the capture stops)
@@ -106,10 +109,40 @@ class CaptureFiles:
             self.last_time = items[-1].time
         if self.output is not None:
             try:
-                for item in items:
-                    self.output.write(item.raw, item.time, noise_comment(item))
+                for data, stamp, comments in self._records(items):
+                    self.output.write(data, stamp, "; ".join(comments) or None)
             except OSError as error:
                 self._failed(self.output.name, error)
+
+    def _records(self, items: list[Item]) -> list[tuple[bytes, float | None, list[str]]]:
+        """A record an item, but a noise run shares one with the items of the batch after it the line gave
+        no silence before (RTU): a record's end reads back as a pause (framing/rtu.py _followed), evidence
+        of a frame's end the line did not give; live showed 5 bytes of noise right before an exception, their
+        own record read back as a damaged exception. The decode of a file joins a noise run and the damaged
+        frame after it too (capturefile.CaptureOutput.write_items); here the frame may be whole: live, no
+        later record says where the noise stopped. The record is at its frame's time, the noise reads back
+        at it. Nothing is held for a later batch (every record is written before its items are shown)."""
+        records: list[tuple[bytes, float | None, list[str]]] = []
+        after: Item | None = None  # the noise run the next item may join
+        timing = self._timing
+        for item in items:
+            comment = noise_comment(item)
+            if (after is not None and timing is not None and item.offset == after.offset + after.length
+                    and item.time is not None and after.time is not None
+                    and line_silence(after.offset, after.time, item.offset, item.time, timing) < timing.t35
+                    and len(records[-1][0]) + item.length <= SNAPLEN):
+                data, stamp, comments = records[-1]
+                if isinstance(item, Noise):
+                    comments = [*comments, comment or ""]
+                else:  # at the frame's time: its response time and pairing read it (the noise has none)
+                    stamp = item.time
+                    shape = f"{'' if item.crc_ok else 'damaged '}frame ({count_text(item.length, 'byte')})"
+                    comments = [*comments, f"then a {shape}"]
+                records[-1] = (data + item.raw, stamp, comments)
+            else:
+                records.append((item.raw, item.time, [comment] if comment else []))
+            after = item if isinstance(item, Noise) else None
+        return records
 
     def tick(self) -> None:
         if self.output is not None:
