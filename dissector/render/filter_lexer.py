@@ -13,7 +13,7 @@ from dissector.render.filter_error import FilterError
 
 @dataclass(slots=True)
 class Token:
-    kind: str  # name, number, bytes, string, char, slice, op, punct, keyword, end
+    kind: str  # name, number, bytes, string, char, slice, op, punct, keyword, reference (${slave}), end
     text: str
     value: Any
     position: int
@@ -34,6 +34,7 @@ _TOKEN = re.compile(
   | (?P<string>[rR]?")
   | (?P<char>')
   | (?P<name>[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*)
+  | (?P<reference>\$\{[^}]*\})
   | (?P<layer>\#(?:\d+|\[[^\]]*\]))
   | (?P<op>===|!==|==|!=|~=|<=|>=|&&|\|\||<|>|!|&|~|[-+*/%])
   | (?P<punct>\.\.|[(){},])
@@ -237,6 +238,8 @@ def tokenize(text: str) -> list[Token]:
                 tokens.append(Token("keyword", word, lowered, i))
             else:
                 tokens.append(Token("name", word, word, i))
+        elif group == "reference":  # ${slave}: the field's value in the selected frame (filter_ops.py)
+            tokens.append(Token(group, word, word[2:-1], i))
         elif group == "op":
             tokens.append(Token(group, word, "~=" if word == "!==" else word, i))
         elif group == "punct":

@@ -113,6 +113,10 @@ def in_members(actual: Any, members: list[tuple[Any, Any]]) -> bool:
     if actual is None:
         return False
     for low, high in members:  # (a true/false field's members are true or false: crc_ok in {0..1})
+        if low is None or high is None:  # (a bound that holds: filter_syntax.parse_set, under all)
+            if (low is None or compare("<=", low, actual)) and (high is None or compare("<=", actual, high)):
+                return True
+            continue
         if isinstance(low, str) != isinstance(actual, str) or isinstance(low, bool) != isinstance(actual, bool):
             continue
         if low == high:

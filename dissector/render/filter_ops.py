@@ -15,6 +15,7 @@ from dissector.render.filter_fields import (
     ALIASES, FRAME_FIELDS, REGISTER_FIELDS, TIME_FILTER_FIELDS, unknown_pdu_key,
 )
 from dissector.render.filter_functions import call
+from dissector.render.filter_lexer import Token
 from dissector.render.filter_match import as_bytes, compile_regex, match_op, quantify
 from dissector.render.filter_syntax import parse_layer
 from dissector.render.filter_values import kind_of, type_name
@@ -40,8 +41,9 @@ def needs_expression(tokens: list[Any], index: int) -> bool:
     def at(i: int, kind: str, *values: str) -> bool:
         return i < len(tokens) and tokens[i].kind == kind and (not values or tokens[i].value in values)
 
-    def opens_operand(i: int) -> bool:  # {...}, -x, +x or a call
-        return at(i, "punct", "{") or at(i, "op", "-", "+") or (at(i, "name") and at(i + 1, "punct", "("))
+    def opens_operand(i: int) -> bool:  # {...}, -x, +x, a call or a field reference
+        return (at(i, "punct", "{") or at(i, "op", "-", "+") or (at(i, "name") and at(i + 1, "punct", "("))
+                or at(i, "reference"))
 
     if opens_operand(index):
         return True
@@ -108,6 +110,8 @@ def _parse_unary(p: Any) -> Operand:
         return _parse_call(p)
     if token.kind == "name" and _is_field(token):
         return _parse_field(p)
+    if token.kind == "reference":
+        return parse_reference(p)
     if token.kind in _LITERALS or p.at("keyword", "true", "false"):
         p.advance()
         return constant(p, token)
@@ -140,6 +144,21 @@ def _parse_call(p: Any) -> Operand:
                                             if (c := cut(_bytes(v))) is not None],
                          register=result.register, function=result.function, size=result.size)
     return result
+
+
+def parse_reference(p: Any) -> Operand:
+    """`${slave}`, tshark 4.0's field reference: the field's value in the frame selected in Wireshark. A
+    decode has none selected, as tshark has none: it holds no value, so a comparison with it never holds
+    (slave == ${slave}, slave != ${slave}, all ...: no frame; not slave == ${slave}: every frame). A name
+    that is no field is a display filter macro to tshark, and vw3-decode has none."""
+    token = p.advance()
+    name = Token("name", token.value, token.value, token.position + 2)
+    if not _is_field(name):
+        raise p.error(f"macro {token.value!r} does not exist (as tshark 4.0 says: vw3-decode has no display filter "
+                      f"macros; ${{FIELD}} is a field reference, as ${{slave}})", token)
+    field, _ftype, register = p.resolve_field(name)
+    return Operand(token.text, token.position, field_type(field), lambda item, reg: [], register=register,
+                   tokens=[token])
 
 
 def _bytes(value: Any) -> bytes:
@@ -202,6 +221,9 @@ def parse_expression_test(p: Any) -> tuple[Any, bool]:
         return _search(p, token, left)
     if p.at("keyword", "in"):
         raise p.error(f"only a field can be tested for membership in a set (as tshark), not {left.text}")
+    if start.kind == "reference" and p.tokens[p.index - 1] is start:
+        raise p.error(f"{start.text} is a field reference, no test: compare a field with it, as "
+                      f"{start.value} == {start.text} (tshark: neither a field nor a protocol name)", start)
     if left.function is not None:
         raise p.error(f"{left.text} alone tests nothing: compare it, as {left.text} > 0 (tshark cannot test "
                       "whether a function is present)", start)

@@ -96,20 +96,36 @@ def parse_set(p: Any, field: str, ftype: str) -> list[tuple[Any, Any]]:
                                   "({3, 4})")
         p.advance()
     p.advance()
-    # (a negative bound for an unsigned field: a member that holds no value, as in tshark 4.0.17)
+    members = [member for member in members if REFERENCE not in member]
+    # A negative bound for an unsigned field, as in tshark 4.0.17: a member that holds no value; under all its
+    # comparison holds for every value (None: the bound's; all slave in {-1..5} is all slave <= 5, as all
+    # slave > -1 holds wherever slave is: filter_values.negative_for_unsigned).
+    if getattr(p, "every", False):
+        return [(None if negative_for_unsigned(field, low) else low, None if negative_for_unsigned(field, high)
+                 else high) for low, high in members]
     return [member for member in members if not any(negative_for_unsigned(field, bound) for bound in member)]
 
 
-def _parse_member(p: Any, field: str, ftype: str) -> tuple[Any, Any]:
+REFERENCE = object()  # a member's bound that is a field reference (${slave}): it holds no value, nor its member
+
+
+def _parse_bound(p: Any, field: str, ftype: str) -> Any:
+    if p.token.kind == "reference":
+        p.parse_reference()  # (a field, or refused as tshark refuses a macro)
+        return REFERENCE
     value_token = p.token
-    low = p.parse_value(field, ftype)
-    p._check_choice(field, low, value_token)
+    value = p.parse_value(field, ftype)
+    p._check_choice(field, value, value_token)
+    return value
+
+
+def _parse_member(p: Any, field: str, ftype: str) -> tuple[Any, Any]:
+    low = _parse_bound(p, field, ftype)
     if p.at("punct", ".."):
         if ftype not in ("number", "any", "bool"):
             raise p.error(f"ranges need numbers; {field} is a text")
         p.advance()
-        high = p.parse_value(field, ftype)
-        return (low, high)
+        return (low, _parse_bound(p, field, ftype))
     return (low, low)
 
 

@@ -100,7 +100,7 @@ from dissector.render.filter_match import (
     search,
 )
 
-from dissector.render.filter_ops import needs_expression, parse_expression_test
+from dissector.render.filter_ops import needs_expression, parse_expression_test, parse_reference
 from dissector.render.filter_syntax import parse_layer, parse_set, parse_slice
 from dissector.render.filter_quantifiers import elements_pass, every_of, every_present, parse_quantified
 from dissector.render.filter_values import TIME_TYPES, bool_literal, kind_of, negative_for_unsigned, time_literal, type_name, uint_limit
@@ -513,6 +513,9 @@ class _Parser:
 
     def parse_set(self, field: str, ftype: str) -> list[tuple[Any, Any]]:
         return parse_set(self, field, ftype)  # (render/filter_syntax.py)
+
+    def parse_reference(self) -> Any:
+        return parse_reference(self)  # ${slave} (render/filter_ops.py; a set's member: filter_syntax.py)
 
     # -- messages -----------------------------------------------------------------------------
     def _check_choice(self, field: str, value: Any, token: Token) -> None:
