@@ -364,6 +364,9 @@ def _head_lines(detail: _Detail, frame: Frame) -> None:
         detail.styled(f"        {_TITLES['exception_code']}: {name} ({shown})", "vw3.exception")
         if frame.exception_text is not None:
             detail.styled(f"        {_TITLES['exception_meaning']}: {frame.exception_text}", "vw3.exception")
+        trailing = frame.fields.get("trailing") if isinstance(frame.fields, dict) else None
+        if trailing:  # (bytes after its code, as --json's fields.trailing and the plugin's vw3.trailing)
+            add(f"        Trailing: {trailing.hex()}")
     elif frame.fields is not None:
         registers = frame.registers
         lines = _INT_FIELD_LINES

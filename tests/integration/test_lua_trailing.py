@@ -2,7 +2,7 @@
 keeps them (--json fields.trailing, -V `Trailing: aabb`, -Y fields.trailing) and warns `unexpected bytes after
 the data (N)`; the plugin warned only, its tree had no item for the bytes. Now it shows them as vw3.trailing,
 where -V has them (after the PDU's fields, before the registers, FC22's mask register included) and on an
-exception (after its code, as --json and -Y have them). Real tshark with -X lua_script:lua/vw3.lua."""
+exception (after its code, as --json, -Y and -V have them). Real tshark with -X lua_script:lua/vw3.lua."""
 from __future__ import annotations
 
 import json
@@ -74,8 +74,10 @@ def test_the_tree_places_them_as_vw3_decode_does(capture: Path) -> None:
     assert python[3][-4:-1] == ["        Or mask: 37 (0x0025)", "        Trailing: cc", "        Register 4: no value"]
     assert plugin[4][-3:] == ["    Byte count: 2", "    Trailing: ddee", "    Register 0 = 7"]
     assert python[4][-4:-1] == ["        Byte count: 2 (0x2)", "        Trailing: ddee", "        Register 0: 7 (0x0007)"]
-    # An exception's: after its code (-V shows its code only; --json and -Y have the byte).
+    # An exception's: after its code, in both trees (as --json and -Y have the byte).
     assert plugin[6][-2:] == ["    Exception code: Illegal Data Address (2)", "    Trailing: 00"]
+    code = python[6].index("        Exception code: Illegal Data Address (2)")
+    assert python[6][code + 1] == "        Trailing: 00"
     # Frames without: no item.
     assert not any("Trailing" in line for frame in (plugin[1], plugin[5]) for line in frame)
 
