@@ -46,7 +46,10 @@ are read with the slave's profile then (finish()). Keyed on the frame, not on ho
 has gone, the compiled engine and the Python stages count alike however the stream is batched. So
 `--stats` and `--report` count on a stream what they count on the same file, and a state is never the
 raw reading beside the device's (p.38 read once: 8400 is unreadable 6 times, 0 changes); only a choice
-taken back later (the file names every frame with the last choice) can still differ. Listeners that show lines as they come (`--watch` live and on
+taken back later, or made after the slave settled without one (an FC43 ProductCode after FIT_ANSWERS
+answers), can still differ: the file names every frame with the last choice, a stream counted the frames
+before it with the profile they were named with (their 16#8000 a value; moved and joined at the choice, the
+order of the states joined unknown: stats_store.join). Listeners that show lines as they come (`--watch` live and on
 standard input) hear such a frame at once as `provisional(frame, register, event)`, named as decoded,
 and its re-read states later through `state()` with the frame still provisional: they write no line
 for those (the change was shown provisional), so re-reading never invents a change.
@@ -67,7 +70,7 @@ from collections.abc import Callable
 from typing import Any, Protocol
 
 from dissector.devices.maps import interpret_wide
-from dissector.devices.profiles import load_profile_map
+from dissector.devices.profiles import device_tables, load_profile_map
 from dissector.model import Frame, Item, Kind, Register
 from dissector.protocol.rules import Confirm, confirmed_by
 from dissector.protocol.table import confirmed_registers, register_reads, register_writes
@@ -115,7 +118,9 @@ class History:
         # slave -> each code's register table on its device now (its FC4 may read the holding registers),
         # which moves what the store and the listeners keep when it changes (_rehome)
         tables = slave_tables(annotate)
-        self.tables: Callable[[int], bytes] = tables or (lambda slave: TABLES)
+        self._slave_tables: Callable[[int], bytes] = tables or (lambda slave: TABLES)
+        # (slave, tables) while a frame named before its slave's choice is applied (_named_tables)
+        self._naming: tuple[int, bytes] | None = None
         self.store = new_store(wide_maps(annotate), tables) if store is None else store
         if tables is not None:
             tables.moved = self._rehome
@@ -165,6 +170,37 @@ class History:
             return
         self._apply(frame)
 
+    def tables(self, slave: int) -> bytes:
+        """Each code's register table for the slave's parameters: its device's now (SlaveTables), or, while
+        a frame named before the slave's choice is applied, the tables of the profile it was named with."""
+        naming = self._naming
+        if naming is not None and naming[0] == slave:
+            return naming[1]
+        return self._slave_tables(slave)
+
+    def _named_tables(self, frame: Frame, profile: object, told: bool) -> bytes | None:
+        """The tables a frame is counted in, when it was named before its slave's profile was chosen
+        (held: `profile`, the profile it is read again with; else, and `told` as decoded, the one it was
+        named with, Frame.profile_choice): those of that profile, as a stream that saw the frame before the choice
+        counted it; the choice's frame moves them (add, _rehome). Without this, a choice decoded in the
+        same batch (the annotator ahead of the history) put them in the new device's tables at once,
+        and the counts hung on how the input was cut (fastsummary_fuzz --stats seed 41435). None: now."""
+        chosen = getattr(self._annotate, "chosen_profile", None)
+        if chosen is None:
+            return None
+        if frame.provisional and not told:
+            if profile is None:
+                return None
+        elif told or self._stale(frame.slave, frame.number):
+            profile = chosen(frame.profile_choice)
+        else:
+            return None
+        tables = device_tables(profile)
+        given = getattr(self._slave_tables, "given", None)
+        if given is not None:
+            given.setdefault(frame.slave, tables)  # (so that the choice's frame sees its tables change)
+        return tables
+
     def finish(self) -> None:
         """The input ended: the frames still held are read with their slave's profile now."""
         for slave in list(self._held):
@@ -184,6 +220,17 @@ class History:
         """What `frame` tells of each parameter; `provisional`: only told to the listeners that show
         provisional lines, with the registers as decoded (the store keeps nothing); `profile`: a held
         frame's, read again with it (None: the slave's now)."""
+        tables = self._named_tables(frame, profile, provisional)
+        if tables is None:
+            self._tell_apply(frame, provisional, profile)
+            return
+        self._naming = (frame.slave, tables)
+        try:
+            self._tell_apply(frame, provisional, profile)
+        finally:
+            self._naming = None
+
+    def _tell_apply(self, frame: Frame, provisional: bool, profile: object) -> None:
         slave = frame.slave
         kind = frame.kind
         function = frame.function
