@@ -195,11 +195,10 @@ class History:
             profile = chosen(frame.profile_choice)
         else:
             return None
+        named = getattr(self._slave_tables, "named", None)
         tables = device_tables(profile)
-        given = getattr(self._slave_tables, "given", None)
-        if given is not None:
-            given.setdefault(frame.slave, tables)  # (so that the choice's frame sees its tables change)
-        return tables
+        # (as a stream that saw the frame then: what was kept with other tables moves now, and back at the choice)
+        return tables if named is None else named(frame.slave, tables)
 
     def finish(self) -> None:
         """The input ended: the frames still held are read with their slave's profile now."""

@@ -92,7 +92,11 @@ class SlaveTables:
         self.moved: Callable[[int, bytes], None] | None = None
 
     def __call__(self, slave: int) -> bytes:
-        tables = device_tables(self.device(slave).profile)
+        return self.named(slave, device_tables(self.device(slave).profile))
+
+    def named(self, slave: int, tables: bytes) -> bytes:
+        """The slave's tables are `tables` (its device's now, or the one a frame counted late was named
+        with: History._named_tables): what was kept with others moves, as a stream saw it move."""
         given = self.given.get(slave)
         if given is not tables:
             self.given[slave] = tables
