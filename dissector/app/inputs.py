@@ -19,7 +19,7 @@ from dissector.framing.linespeed import FROM_PCAPNG, LineSettings, line_settings
 from dissector.model import Chunk, Item, stamped_before
 from dissector.render.capturefile import CaptureOutput, Interface, pcapng_interface
 from dissector.render.pcapngwriter import resolution_text, tsresol
-from dissector.render.pcapwriter import MICROS, NANOS
+from dissector.render.pcapwriter import MICROS, NANOS, finer_than_micros
 from dissector.sources.interfaces import PacketInterface, open_interface, packet_interfaces
 from dissector.sources.pcap import MAGICS, is_pcap
 from dissector.sources.pcapng import IDB, SHB, _interface, is_pcapng
@@ -143,8 +143,7 @@ def write_units(paths: list[str], stdin: Any = None, fmt: str | None = None) -> 
 
     for path in paths:
         if path == "-":
-            piped = hasattr(stdin, "peek") and not stdin.isatty()  # (a terminal: nothing to wait for here)
-            head = stdin.peek(STDIN_HEAD) if piped else b""
+            head = stdin_head(stdin)
             interfaces = stdin_interfaces(head)
         else:
             if not rereadable(path):  # (a FIFO's bytes are the decode's: none read here)
@@ -158,7 +157,7 @@ def write_units(paths: list[str], stdin: Any = None, fmt: str | None = None) -> 
             if not is_pcap(head) and not interfaces and _text_nanoseconds(path, fmt):
                 return NANOS
         units = [MAGICS.get(head[:4], ("", MICROS))[1], *(interface.units for interface in interfaces)]
-        if any(unit > MICROS or MICROS % unit for unit in units):
+        if any(finer_than_micros(unit) for unit in units):
             return NANOS
     return MICROS
 
@@ -179,6 +178,12 @@ def _text_nanoseconds(path: str, fmt: str | None) -> bool:
 
 
 STDIN_HEAD = 4096  # a pcapng's section and first interface blocks (tools write them at once)
+
+
+def stdin_head(stdin: Any) -> bytes:
+    """What standard input holds already (peek: nothing read; a terminal: nothing to wait for)."""
+    piped = hasattr(stdin, "peek") and not stdin.isatty()
+    return stdin.peek(STDIN_HEAD) if piped else b""
 
 
 def stdin_interfaces(head: bytes) -> list[RecordedInterface]:
@@ -204,8 +209,7 @@ def first_interface_units(path: str | None, fmt: str | None, stdin: Any = None) 
     if path is None or fmt not in (None, "pcapng"):
         return None
     if path == "-":
-        piped = hasattr(stdin, "peek") and not stdin.isatty()
-        return max((found.units for found in stdin_interfaces(stdin.peek(STDIN_HEAD) if piped else b"")), default=None)
+        return max((found.units for found in stdin_interfaces(stdin_head(stdin))), default=None)
     buses = packet_interfaces(path)  # ([] for a FIFO: not read here)
     return buses[0].interface.units if buses else None
 

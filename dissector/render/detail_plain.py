@@ -28,6 +28,7 @@ from dissector.render.detail import (
     _profile_line,
 )
 from dissector.render.summary import check_untyped
+from dissector.render.pcapwriter import NANOS
 from dissector.render.timefmt import MICRO_DIGITS, SECONDS, arrival_line
 
 
@@ -69,7 +70,6 @@ _BIT_MIDDLES_MAX, _BIT_MIDDLE_BITS = 1 << 10, 64  # (a 64-bit read's middle: ~1.
 _VALUE_PARTS: dict[tuple[Any, ...], list[Any]] = {}
 _VALUE_PARTS_MAX = 1 << 10
 _CRC_OK_TAILS: dict[int, str] = {}
-_NS = 1_000_000_000
 
 
 def _block_middle(frame: Frame, registers: Sequence[Register], untyped: bool) -> str:
@@ -137,7 +137,7 @@ def plain_frame_text(frame: Frame, base: float | None, digits: int = MICRO_DIGIT
     if time is None:
         head = f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}{words[1]}"
     elif type(time) is Stamp and type(base) is Stamp and digits == MICRO_DIGITS:  # arrival_line's, in one f-string
-        whole, rest = divmod(time.ns, _NS)  # type: ignore[attr-defined]
+        whole, rest = divmod(time.ns, NANOS)  # type: ignore[attr-defined]
         micros = round(rest / 1000)  # whole_micros
         if micros == 1_000_000:
             whole, micros = whole + 1, 0
@@ -145,7 +145,7 @@ def plain_frame_text(frame: Frame, base: float | None, digits: int = MICRO_DIGIT
         if second is not None:
             head = (f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}\n"
                     f"    Arrival time: {second}.{str(1_000_000 + micros)[1:]} UTC "  # micros:06d
-                    f"({(time.ns - base.ns) / _NS:.6f} s since the first item){words[1]}")  # type: ignore[attr-defined]
+                    f"({(time.ns - base.ns) / NANOS:.6f} s since the first item){words[1]}")  # type: ignore[attr-defined]
     if head is None:
         head = (f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}\n"
                 f"{arrival_line(time, base, digits)}{words[1]}")  # type: ignore[arg-type]
@@ -187,7 +187,7 @@ def plain_frame_text(frame: Frame, base: float | None, digits: int = MICRO_DIGIT
             asked = request.time
             if type(time) is Stamp and type(asked) is Stamp:
                 add("    Request in frame: %d\n    Response time: %.3f ms"
-                    % (request.number, (time.ns - asked.ns) / _NS * 1000))  # type: ignore[attr-defined]
+                    % (request.number, (time.ns - asked.ns) / NANOS * 1000))  # type: ignore[attr-defined]
             elif asked is not None:
                 add("    Request in frame: %d\n    Response time: %.3f ms"
                     % (request.number, frame.response_time * 1000))  # type: ignore[operator]

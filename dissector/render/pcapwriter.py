@@ -20,6 +20,11 @@ PCAP_MAGIC_NANO = 0xA1B23C4D  # times in nanoseconds (libpcap's, as tshark -w ke
 MICROS, NANOS = 1_000_000, 1_000_000_000  # a format's time units per second
 
 
+def finer_than_micros(units: int) -> bool:
+    """Can microseconds not hold times in 1/`units` s (a nanosecond pcap, if_tsresol 10^-7 or 2^-10)?"""
+    return units > MICROS or MICROS % units != 0
+
+
 def split_time(timestamp: float, units: int = MICROS) -> tuple[int, int]:
     """(seconds, fraction in 1/`units` s) as pcap and pcapng store them; the reader's seconds + fraction /
     units gives it back (a pcapng's units: any if_tsresol, 2^-10 s or 10^-3 s as microseconds)."""

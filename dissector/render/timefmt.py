@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from datetime import datetime, timezone
 
 from dissector.model import Item, Stamp
-from dissector.render.pcapwriter import MICROS, NANOS
+from dissector.render.pcapwriter import NANOS, finer_than_micros
 
 # -t value -> what tshark calls it (for --help and error messages)
 TIME_FORMATS: dict[str, str] = {
@@ -55,7 +55,7 @@ def detail_digits(units: int | None) -> int:
     1/`units` s: 9, as tshark -V's Arrival Time shows its nanoseconds, where microseconds cannot hold them
     (a nanosecond pcap, if_tsresol 10^-7 or 2^-10, where the column shows 6 or 3: -w's rule,
     app/inputs.py write_units); else 6, as always."""
-    return NANO_DIGITS if units and (units > MICROS or MICROS % units) else MICRO_DIGITS
+    return NANO_DIGITS if units and finer_than_micros(units) else MICRO_DIGITS
 
 
 def whole_fraction(seconds: float, digits: int = MICRO_DIGITS, cut: bool = False) -> tuple[int, int]:
