@@ -9,7 +9,9 @@ An operand has every value a field has in the item (one per element of a list: t
 and an operation takes every pair; a comparison holds when some pair passes it (`!=`: every pair
 differs, `===`: every pair is equal, `~=`: some pair differs). A register field reads one register at a
 time, as elsewhere in the filter (the rule of render/filters.py), except in count(), max() and min(),
-which, as tshark's, take every occurrence of the frame. Types are -G fields' (render/glossary.py):
+and where an operation or a comparison meets register fields on both sides (`value == address`,
+`value - 1 == value`): those take every occurrence of the frame, as tshark's, each of one side with each
+of the other (frame_level). Types are -G fields' (render/glossary.py):
 whole numbers add, subtract, multiply, divide (dropping the fraction; by 0: no value), take a remainder
 and a bitwise and (&, below + and -); decimals the same but &; times add and subtract; texts, bytes and
 true/false none. A literal takes the type of what it meets: `{slave * 1.5}` is refused as tshark
@@ -19,7 +21,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field as dataclass_field
+from dataclasses import dataclass, field as dataclass_field, replace
 from typing import Any
 
 from dissector.render.filter_lexer import NUMBER, Token, number, parse_bytes
@@ -59,6 +61,15 @@ def counted(p: Any, operand: Operand, size: int, token: Token) -> Operand:
         raise p.error(f"more than {MAX_OPERATIONS} operations in one operand: split the filter", token)
     operand.size = size
     return operand
+
+
+def frame_level(operand: Operand) -> Operand:
+    """`operand` over the whole frame, every occurrence of every register, as tshark takes two fields with
+    several occurrences each: every value of one meets every value of the other (`value == address`,
+    `value - address`), not register by register."""
+    if not operand.register:
+        return operand
+    return replace(operand, values=lambda item, reg: frame_values(operand, item), register=False)
 
 
 def frame_values(operand: Operand, item: Item) -> list[Any]:
@@ -178,6 +189,8 @@ def arithmetic(p: Any, op: Token, left: Operand, right: Operand) -> Operand:
         return counted(p, folded, size, op)
     ftype = left.ftype if left.fold is None else right.ftype
     left, right = typed(p, left, ftype), typed(p, right, ftype)
+    if left.register and right.register:
+        left, right = frame_level(left), frame_level(right)
     if kind_of(left.ftype) != kind_of(right.ftype):
         raise p.error(f"{left.text} and {right.text} are not type compatible ({left.ftype}, "
                       f"{right.ftype})", op)

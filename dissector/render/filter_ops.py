@@ -8,16 +8,21 @@ its operands parsed, as tshark 4.0.17's grammar reads them,
 and compared. render/filters.py parses every other test itself: needs_expression tells which."""
 from __future__ import annotations
 
+import re
+from dataclasses import replace
 from typing import Any
 
-from dissector.render.filter_expr import ARITHMETIC, Operand, arithmetic, constant, counted, negative, typed
+from dissector.render.filter_expr import (
+    ARITHMETIC, Operand, arithmetic, constant, counted, frame_level, negative, typed,
+)
 from dissector.render.filter_fields import (
     ALIASES, FRAME_FIELDS, REGISTER_FIELDS, TIME_FILTER_FIELDS, unknown_pdu_key,
 )
 from dissector.render.filter_functions import call
-from dissector.render.filter_lexer import Token
+from dissector.render.filter_error import FilterError
+from dissector.render.filter_lexer import Token, tokenize
 from dissector.render.filter_match import as_bytes, compile_regex, match_op, quantify
-from dissector.render.filter_syntax import parse_layer
+from dissector.render.filter_syntax import layer_holds_first, parse_layer
 from dissector.render.filter_values import kind_of, type_name
 from dissector.render.glossary import field_type
 
@@ -54,6 +59,9 @@ def needs_expression(tokens: list[Any], index: int) -> bool:
         i += 1
     if at(i, "op", *ARITHMETIC) or (at(i, "op", "&") and at(i + 2, "op", *ARITHMETIC)):
         return True
+    if at(i, "op", "&") and (opens_operand(i + 1) and not at(i + 1, "op", "-", "+")
+                             or i + 1 < len(tokens) and _is_field(tokens[i + 1])):
+        return True  # (slave & ${slave}, value & value: a bitwise and of two operands, as tshark's)
     if not at(i, "op", *COMPARISONS):
         return False
     right = i + 1
@@ -150,13 +158,29 @@ def parse_reference(p: Any) -> Operand:
     """`${slave}`, tshark 4.0's field reference: the field's value in the frame selected in Wireshark. A
     decode has none selected, as tshark has none: it holds no value, so a comparison with it never holds
     (slave == ${slave}, slave != ${slave}, all ...: no frame; not slave == ${slave}: every frame). A name
-    that is no field is a display filter macro to tshark, and vw3-decode has none."""
+    that is no field is a display filter macro to tshark, and vw3-decode has none. A layer (${slave#1}) is
+    read as slave#1's and changes nothing."""
     token = p.advance()
-    name = Token("name", token.value, token.value, token.position + 2)
-    if not _is_field(name):
-        raise p.error(f"macro {token.value!r} does not exist (as tshark 4.0 says: vw3-decode has no display filter "
+    written, hash_, layer = token.value.partition("#")
+    name = Token("name", written, written, token.position + 2)
+    if not _is_field(name):  # a macro to tshark: its name is what comes before its arguments (${name:a;b})
+        macro = token.value.partition(":")[0]
+        if not re.fullmatch(r"[\w.]*", macro):
+            raise p.error("invalid character in macro name (as tshark 4.0 says: vw3-decode has no display filter "
+                          "macros; ${FIELD} is a field reference, as ${slave} or ${slave#1})", token)
+        raise p.error(f"macro {macro!r} does not exist (as tshark 4.0 says: vw3-decode has no display filter "
                       f"macros; ${{FIELD}} is a field reference, as ${{slave}})", token)
     field, _ftype, register = p.resolve_field(name)
+    if hash_:  # ${slave#1}: a layer, read as slave#1's (it changes nothing: the reference holds no value)
+        at = name.position + len(written)
+        try:
+            layers = tokenize(hash_ + layer)
+        except FilterError as error:
+            raise FilterError(error.message, p.text, at + error.position) from None
+        if len(layers) > 2:
+            raise p.error(f"unexpected {layers[1].text!r} in the field reference {token.text}",
+                          replace(layers[1], position=at + layers[1].position))
+        layer_holds_first(p, replace(layers[0], position=at))
     return Operand(token.text, token.position, field_type(field), lambda item, reg: [], register=register,
                    tokens=[token])
 
@@ -235,6 +259,8 @@ def _comparison(op: str, left: Operand, right: Operand, every: bool = False) -> 
     """Some pair passes `op`; `~=` some pair differs; `!=` none is equal and `===` none differs, of a
     left and a right that have values (over the frame's registers when one reads a register's); under
     `all` (`every`) no pair fails `op`."""
+    if left.register and right.register:  # (every occurrence of one with every one of the other, as tshark)
+        left, right = frame_level(left), frame_level(right)
     lefts, rights = left.values, right.values
     register = left.register or right.register
     wanted = {"~=": "!=", "!=": "==", "===": "!="}.get(op, op)

@@ -135,9 +135,15 @@ def parse_layer(p: Any) -> bool:
     True when none follows."""
     if p.token.kind != "layer":
         return True
-    token = p.advance()
+    return layer_holds_first(p, p.advance())
+
+
+def layer_holds_first(p: Any, token: Token) -> bool:
+    """Do the layers of `token` (#1, #[1-2]) hold the first? Refused as tshark 4.0.17 refuses them."""
     spec = token.text[1:]
     if spec[0] != "[":
+        if int(spec) >= 1 << 31:
+            raise p.error(f"{spec!r} causes an integer overflow (in the layer {token.text})", token)
         return int(spec) == 1
     ranges = [_slice_range(p, part, token) for part in spec[1:-1].split(",")]
 
