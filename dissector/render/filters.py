@@ -51,6 +51,8 @@ several registers, so these tests ask "is there a register such that...". The ru
     The register fields of a filter are tested on ONE register at a time, within the nearest enclosing
     `not` (or the whole filter): the frame matches when SOME register makes that part true.
 
+(One relation with register fields on both sides, `value == address`, `value - 1 == value`, is tshark's:
+every occurrence of one side meets every occurrence of the other, over the frame: render/filter_expr.py.)
 So `code == "CHCF" and status == "protected"` needs both on the same register (CHCF read as protected),
 not CHCF somewhere and a protected register elsewhere; `slave == 12 and code == "CHCF"` is "a register
 CHCF in a frame of slave 12". `not code == "CHCF"` is "no register is CHCF" (the `not` closes the
