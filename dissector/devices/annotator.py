@@ -71,8 +71,14 @@ class Annotator:
         self._held: dict[int, list[Frame]] = {}
         self._broadcasting: dict[str, Device] = {}  # slave 0's device by profile (_broadcast)
         self.masked: dict[int, int | None] | None = None  # remember_mask's values, for render/history.py
+        # Parameter histories holding a slave's frames until its choice is final: the compiled path leaves
+        # such a slave to the Python stages (render/history.py History.holds, compilable)
+        self.holds: list[Callable[[int], bool]] = []
         for profile in [default, *per_slave.values()]:
             self._builder.build(profile, None)  # load every map now: errors before the first frame
+
+    def __getstate__(self) -> dict[str, object]:  # a copy (another bus's, app/cli.py): its own histories hold it
+        return {**self.__dict__, "holds": []}
 
     @property
     def layers(self) -> list[MapLayer]:
@@ -187,7 +193,7 @@ class Annotator:
         map has no 32-bit rows (a register's text would depend on its neighbour's value)."""
         if self._inferred_broadcast(slave):
             return False  # (named with the device of the slaves met so far: _broadcast)
-        return self.settled(slave) and not self.device(slave).wide
+        return self.settled(slave) and not self.device(slave).wide and not any(hold(slave) for hold in self.holds)
 
     # -- setup ----------------------------------------------------------------------------------------
     def device(self, slave: int) -> Device:

@@ -36,23 +36,32 @@ parameter of its own, only counted (`half_values`). The compiled store keeps 16-
 (dissector/accel/_stats.h Param.last): a run whose maps have 32-bit rows keeps its history in the Python
 store (`new_store(wide=True)`), and the engine then counts nothing itself (StatsCollector.engine_store).
 
-A value counts as the device of its slave reads it. Read once (standard input, live), a frame decoded
-before profile `auto` chose its slave's device (Frame.provisional) was named with spec semantics only:
-the history holds it back, at most a slave's judging frames (FIT_FRAMES), until the slave's first frame
-named after the choice (or after it settled without one), and reads it again with the profile that
-frame was named with (Frame.profile_choice; Annotator.reread: 16#8000 in a multi-register read is then
-the status `non-existent` or `protected`, not the value 32768); frames still held when the input ends
-are read with the slave's profile then (finish()). Keyed on the frame, not on how far the annotator
-has gone, the compiled engine and the Python stages count alike however the stream is batched. So
-`--stats` and `--report` count on a stream what they count on the same file, and a state is never the
-raw reading beside the device's (p.38 read once: 8400 is unreadable 6 times, 0 changes); only a choice
-taken back later, or made after the slave settled without one (an FC43 ProductCode after FIT_ANSWERS
-answers), can still differ: the file names every frame with the last choice, a stream counted the frames
-before it with the profile they were named with (their 16#8000 a value; moved and joined at the choice, the
-order of the states joined unknown: stats_store.join). Listeners that show lines as they come (`--watch` live and on
-standard input) hear such a frame at once as `provisional(frame, register, event)`, named as decoded,
+A value counts as the device of its slave reads it. A file is named with the choices profile `auto`
+made over all of it (app/preselect.py), from each slave's first frame. Read once (standard input, live),
+a frame is named with the choice as it stood then: decoded before profile `auto` chose (Frame.provisional,
+spec semantics only), or with a choice later traffic may still change (ProfileChoice.final false: a slave
+settled without a device, or on the evidence of its registers, may yet send an FC43 ProductCode, or an
+answer its device does not support). The history holds such frames back (held()) until the slave's
+first frame named with a final choice (where it holds provisional frames only, below: its first frame
+after it settled), and reads them again with the profile that frame was named with
+(Frame.profile_choice; Annotator.reread: 16#8000 in a multi-register read is then the status
+`non-existent` or `protected`, not the value 32768, FC4 reads the holding registers on the ATV71);
+frames still held when the input ends are read with the slave's profile then, the file's (finish()).
+Keyed on the frame, not on how far the annotator has gone, the compiled engine (which leaves a slave held
+to the Python stages: holds(), Annotator.compilable) and the Python stages count alike however the
+stream is batched. So `--stats` and `--report` count on a stream what they count on the
+same file (p.38 read once: 8400 is unreadable 6 times, 0 changes; an FC43 ProductCode in a slave's 12th
+frame: its 16#8000 in frame #6 `non-existent`, as the file says). Two cases hold nothing back and can
+still differ from the file: past MAX_HELD frames held (all slaves together) each slave's held frames are
+counted with the profile its last was named with and every frame from then on as it comes; and with
+`--watch`, whose lines are written as frames come (holding is for outputs made at the end: a listener's
+`at_end`). A choice changed after frames so counted names what was kept again (below: rename, rehome;
+their 16#8000 stays a value, the order of states joined is unknown: stats_store.join), and --stats says
+so under its profiles (late_choices). Listeners that show lines as they come (`--watch` live and on
+standard input) hear a provisional frame at once as `provisional(frame, register, event)`, named as decoded,
 and its re-read states later through `state()` with the frame still provisional: they write no line
-for those (the change was shown provisional), so re-reading never invents a change.
+for those (the change was shown provisional), so re-reading never invents a change; the report hears
+every held frame so at once (its series kept in stream order) and its states when it is read again.
 When profile `auto` chooses again later (a choice taken back), the values kept of that slave are
 named again by the new device (`store.rename`), and listeners hear `renamed(slave)`. Where the new device
 reads a table with another's code (the ATV71 chosen after FC4 reads: its FC4 reads the holding
@@ -93,6 +102,9 @@ _BY_MASK = confirmed_by(Confirm.MASK)  # FC22: its echo confirms masks, the valu
 # Register statuses a profile gives to a read that returned a marker rather than a value (p.38).
 UNREADABLE_STATUSES = frozenset(["protected", "non-existent"])
 _NOW = object()  # finish(): held frames read with their slave's profile now
+# Frames held back at most, all slaves together (History.held; ~1.3 KB each: 21 MB of the plant mix's): past
+# it, frames are counted as they come and a later choice may count otherwise than the file (the module's doc).
+MAX_HELD = 16384
 
 
 class Listener(Protocol):
@@ -136,7 +148,18 @@ class History:
         self.annotate = annotate  # for the outputs' names (PLC-style labels)
         self._renamed: dict[int, int] = {}  # slave -> the choice frame its values were named again for
         self._rehomed = 0  # moves made (_rehome)
-        self._held: dict[int, list[Frame]] = {}  # slave -> its provisional frames, until its choice
+        self._held: dict[int, list[Frame]] = {}  # slave -> its frames held back (held()), until its final choice
+        self._held_frames = 0  # in _held, all slaves (MAX_HELD)
+        # The frame past MAX_HELD held frames from which none is held but provisional ones (None: not reached),
+        # and the slaves whose frames were counted before a choice that changed later (late_choices)
+        self.overflow: int | None = None
+        self._unsure: set[int] = set()
+        self.late_choices: dict[int, int] = {}  # slave -> that choice's frame
+        self._selector = getattr(annotate, "selector", None)
+        self._forced = getattr(annotate, "per_slave", None) or {}
+        holds = getattr(annotate, "holds", None)
+        if holds is not None:
+            holds.append(self.holds)  # (the compiled engine asks: Annotator.compilable)
         self._masked: dict[int, int | None] = {}  # the annotator's Mask Write values (Annotator.masked)
         if getattr(annotate, "masked", 0) is None:
             annotate.masked = self._masked  # type: ignore[union-attr]
@@ -147,10 +170,12 @@ class History:
             return
         frame: Frame = item  # type: ignore[assignment]
         slave = frame.slave
-        if self._held and not frame.provisional and slave in self._held:
-            # The slave's first frame named after the choice (or once it settled without one): its
-            # held frames are read with the profile this frame was named with, whatever came since.
-            self._replay(self._held.pop(slave), frame.profile_choice)
+        late = not frame.provisional and self._late(frame)
+        if self._held and not frame.provisional and not late and slave in self._held:
+            # The slave's first frame named with a final choice (past MAX_HELD or under --watch, where
+            # only provisional frames are held: its first once it settled): its held frames are read
+            # with the profile this frame was named with, whatever came since.
+            self._release(slave, frame.profile_choice)
         if not frame.crc_ok:
             return
         if self._choice_frame is not None:
@@ -159,16 +184,72 @@ class History:
                 # The first frame named with the profile chosen in frame `chosen`: what was kept of
                 # this slave before (here, or by the compiled engine in the same store) is named again.
                 self._renamed[slave] = chosen
+                if slave in self._unsure:  # (counted before it: the file may count them otherwise)
+                    self.late_choices[slave] = chosen
                 rehomed = self._rehomed
                 self.tables(slave)  # a device of other tables moves them first (SlaveTables: _rehome names them)
                 if self._rehomed == rehomed:
                     self._rename(slave)
-        if frame.provisional:
+        if frame.provisional or late:
             if self._watching:
                 self._apply(frame, provisional=True)
             self._held.setdefault(slave, []).append(frame)
+            self._held_frames += 1
+            if late and self._held_frames > MAX_HELD:
+                self._overflow(frame.number)
             return
+        self._counted(slave, frame.profile_choice)
         self._apply(frame)
+
+    def _counted(self, slave: int, choice: Any) -> None:
+        """Frames of `slave` named with `choice` are counted: if profile `auto` may still change it, a
+        later change cannot count them again (late_choices)."""
+        selector = self._selector
+        if (selector is not None and not selector.frozen and slave != 0 and slave not in self._forced
+                and (choice is None or not choice.final)):
+            self._unsure.add(slave)
+
+    def held(self, frame: Frame) -> bool:
+        """The history holds `frame` back until its slave's choice is final (or the input ends): it was
+        named before profile `auto` chose (provisional), or with a choice later traffic may still change."""
+        return frame.provisional or self._late(frame)
+
+    def _holding(self, slave: int) -> bool:
+        """Frames of this slave named now would be held: profile `auto` chooses as the stream goes (not
+        frozen on a first pass), for outputs made at the end only (no --watch), and the slave is neither
+        slave 0 (broadcasts: named with the device the slaves share), forced, nor counted past the cap."""
+        selector = self._selector
+        return (selector is not None and not selector.frozen and slave != 0 and slave not in self._forced
+                and self.overflow is None and all(getattr(each, "at_end", False) for each in self.listeners))
+
+    def _overflow(self, number: int) -> None:
+        """Past MAX_HELD frames held: each settled slave's are counted now, with the profile its last one
+        was named with, and every frame from now on as it comes (provisional ones still wait)."""
+        self.overflow = number
+        for slave, frames in list(self._held.items()):
+            if not frames[-1].provisional:
+                self._release(slave, frames[-1].profile_choice)
+
+    def _late(self, frame: Frame) -> bool:
+        """A frame (not provisional) named with a choice that its slave's later traffic may still change."""
+        choice = frame.profile_choice
+        return (choice is None or not choice.final) and self._holding(frame.slave)
+
+    def holds(self, slave: int) -> bool:
+        """The compiled engine leaves this slave's frames to the Python stages (Annotator.compilable): the
+        history would hold them, its choice as it stands now not final."""
+        final = getattr(self._annotate, "final", None)
+        return final is not None and self._holding(slave) and not final(slave)
+
+    def _release(self, slave: int, choice: object) -> None:
+        frames = self._held.pop(slave)
+        self._held_frames -= len(frames)
+        if choice is not _NOW:
+            self._counted(slave, choice)
+        changed = getattr(self._annotate, "changed", None)
+        if changed is not None:
+            changed.add(slave)  # (the compiled engine asks again: it may take the slave's frames now)
+        self._replay(frames, choice)
 
     def tables(self, slave: int) -> bytes:
         """Each code's register table for the slave's parameters: its device's now (SlaveTables), or, while
@@ -178,7 +259,7 @@ class History:
             return naming[1]
         return self._slave_tables(slave)
 
-    def _named_tables(self, frame: Frame, profile: object, told: bool) -> bytes | None:
+    def _named_tables(self, frame: Frame, profile: object, told: bool, held: bool) -> bytes | None:
         """The tables a frame is counted in, when it was named before its slave's profile was chosen
         (held: `profile`, the profile it is read again with; else, and `told` as decoded, the one it was
         named with, Frame.profile_choice): those of that profile, as a stream that saw the frame before the choice
@@ -188,7 +269,7 @@ class History:
         chosen = getattr(self._annotate, "chosen_profile", None)
         if chosen is None:
             return None
-        if frame.provisional and not told:
+        if held:
             if profile is None:
                 return None
         elif told or self._stale(frame.slave, frame.number):
@@ -203,39 +284,39 @@ class History:
     def finish(self) -> None:
         """The input ended: the frames still held are read with their slave's profile now."""
         for slave in list(self._held):
-            self._replay(self._held.pop(slave), _NOW)
+            self._release(slave, _NOW)
 
     def _replay(self, frames: list[Frame], choice: object) -> None:
         chosen = getattr(self._annotate, "chosen_profile", None)
         profile = None if chosen is None or choice is _NOW else chosen(choice)
         for frame in frames:
-            self._apply(frame, profile=profile)
+            self._apply(frame, profile=profile, held=True)
 
     @property
     def _watching(self) -> list[Any]:
         return [listener for listener in self.listeners if hasattr(listener, "provisional")]
 
-    def _apply(self, frame: Frame, provisional: bool = False, profile: object = None) -> None:
+    def _apply(self, frame: Frame, provisional: bool = False, profile: object = None, held: bool = False) -> None:
         """What `frame` tells of each parameter; `provisional`: only told to the listeners that show
-        provisional lines, with the registers as decoded (the store keeps nothing); `profile`: a held
-        frame's, read again with it (None: the slave's now)."""
-        tables = self._named_tables(frame, profile, provisional)
+        provisional lines, with the registers as decoded (the store keeps nothing); `held`: a held
+        frame, read again with `profile` (None: the slave's now)."""
+        tables = self._named_tables(frame, profile, provisional, held)
         if tables is None:
-            self._tell_apply(frame, provisional, profile)
+            self._tell_apply(frame, provisional, profile, held)
             return
         self._naming = (frame.slave, tables)
         try:
-            self._tell_apply(frame, provisional, profile)
+            self._tell_apply(frame, provisional, profile, held)
         finally:
             self._naming = None
 
-    def _tell_apply(self, frame: Frame, provisional: bool, profile: object) -> None:
+    def _tell_apply(self, frame: Frame, provisional: bool, profile: object, held: bool) -> None:
         slave = frame.slave
         kind = frame.kind
         function = frame.function
         registers = frame.registers
         if not provisional:
-            if frame.provisional:
+            if held:
                 registers = self._reread(frame, profile)
             elif registers and self._stale(slave, frame.number):
                 registers = self._fresh(frame, registers)
@@ -252,7 +333,7 @@ class History:
         if request is not None and request.crc_ok and request.registers and request.function in WRITE_FUNCTIONS:
             written = request.registers
             if not provisional:
-                if request.provisional:
+                if held or request.provisional:
                     written = self._reread(request, profile)
                 elif self._stale(slave, request.number):
                     written = self._fresh(request, written)

@@ -47,6 +47,7 @@ from dissector.model import Frame, Item, Kind, Noise
 from dissector.render import tables
 from dissector.render.describe import count_text
 from dissector.render.pollcycle import PollCycle, describe_key
+from dissector.render import history as history_rules
 from dissector.render.history import UNREADABLE_STATUSES, History
 from dissector.render.stats_store import (
     COUNT_REQUESTS, COUNT_RESPONSES, COUNT_UNANSWERED, MAX_PARAMETERS, TABLE_NAMES, TALLY_COUNTS, Coarse,
@@ -278,6 +279,10 @@ class StatsCollector:
             "parameters": parameters,
             "poll_cycle": self.poll.report(poll_rows),
             **({"merged_captures": list(self.captures)} if len(self.captures) > 1 else {}),
+            # Slaves whose frames a stream counted before a choice made later (render/history.py MAX_HELD)
+            **({"counted_before_choice": [{"slave": slave, "frame": frame} for slave, frame in
+                                          sorted(self.history.late_choices.items())]}
+               if self.history.late_choices else {}),
             "profiles": [
                 {"slave": choice.slave, "profile": choice.profile, "reason": choice.reason, "frame": choice.frame,
                  **({"file": choice.source} if getattr(choice, "source", None) is not None else {})}
@@ -378,7 +383,12 @@ class StatsCollector:
                 times.rows.append([str(row["slave"]), function, str(timing["count"]),
                                    *(_ms(timing[key]) for key in ("min", "median", "p95", "max"))])
         if report["profiles"]:
-            profiles = TableSpec("Device profiles", ["slave", "profile", "why"], [True, False, False])
+            late = report.get("counted_before_choice")
+            caption = None if not late else "; ".join(
+                f"slave {row['slave']}: its frames before #{row['frame']} counted as named then, not with this choice"
+                for row in late) + (f" (read once, the history holds {history_rules.MAX_HELD:,} frames at most "
+                                    "for a choice, none with --watch): the file's counts may differ")
+            profiles = TableSpec("Device profiles", ["slave", "profile", "why"], [True, False, False], caption=caption)
             for choice in report["profiles"]:  # (a reason names the frame that decided it: said once)
                 profiles.rows.append([str(choice["slave"]), choice["profile"], choice["reason"]])
             blocks += [profiles, ""]

@@ -26,6 +26,7 @@ The x axis is the capture time (Unix seconds) when items are time-stamped, the f
 """
 from __future__ import annotations
 
+from bisect import bisect_left, bisect_right
 from dataclasses import dataclass, field
 from typing import Any, Iterator
 
@@ -76,6 +77,8 @@ class Series:
 
 
 class ReportCollector:
+    at_end = True  # the page is written at the end: the history may hold frames back for it (History.held)
+
     def __init__(self, annotate: object = None, history: History | None = None) -> None:
         """`history`: the run's parameter history, fed by its owner (StatsCollector); None: one of its
         own, fed by add()."""
@@ -93,6 +96,7 @@ class ReportCollector:
         self.spans = 0  # unreadable spans opened (the compiled engine reads the statuses again when it grows)
         self.events: list[tuple[float, str, int | None, str, str | None]] = []  # (x, kind, slave, text, detail)
         self.events_dropped = 0
+        self._event_numbers: list[int] = []  # each listed event's frame number, in order
         self.event_columns: dict[str, dict[int, int]] = {kind: {} for kind in EVENT_KINDS}
         self.event_counts: dict[str, int] = {kind: 0 for kind in EVENT_KINDS}
         self.first_x: float | None = None
@@ -112,7 +116,7 @@ class ReportCollector:
         self.groups = EventGroups()
         # Exceptions told before their slave's device was chosen: (event index or None, slave, function,
         # code, text told), retold with the device's meaning by data()
-        self._pending: list[tuple[int | None, int, int, int, str, Frame | None]] = []
+        self._pending: list[tuple[int, int, int, int, str, Frame | None]] = []  # (frame number, slave, ...)
         self._moments = Moments()  # the protection moments of the frame at hand, until flush()
 
     # -- the x axis -------------------------------------------------------------------------------
@@ -196,11 +200,10 @@ class ReportCollector:
                 request = trusted_request(frame)
                 told = event_text(frame.function, code, frame.exception_text if device is None else
                                   device_meaning(device, frame.function, code, request))
-                if frame.provisional and self._device is not None:
-                    # Decoded before profile `auto` chose the slave's device: no meaning yet (data() tells it)
+                if self._device is not None and self.history.held(frame):
+                    # Decoded before profile `auto` chose the slave's device for good: no meaning yet (data() tells it)
                     # (its request kept: a refused read-only write, the causes it picks: meaning.py)
-                    self._pending.append((len(self.events) if len(self.events) < MAX_EVENTS else None,
-                                          frame.slave, frame.function, code, told, request))
+                    self._pending.append((self.number, frame.slave, frame.function, code, told, request))
                 self._event(x, "exception", frame.slave, told)
         if self.owns_history:
             self.history.add(frame)
@@ -215,8 +218,16 @@ class ReportCollector:
         counts = self.event_columns[kind]
         col = self._col(x)
         counts[col] = counts.get(col, 0) + 1
-        if len(self.events) < MAX_EVENTS:
-            self.events.append((x, kind, slave, text, detail))
+        numbers = self._event_numbers
+        if len(numbers) < MAX_EVENTS or number < numbers[-1]:
+            # In frame order, the file's: a held frame's protection comes when the history reads it again
+            at = len(numbers) if not numbers or number >= numbers[-1] else bisect_right(numbers, number)
+            numbers.insert(at, number)
+            self.events.insert(at, (x, kind, slave, text, detail))
+            if len(numbers) > MAX_EVENTS:  # (the first MAX_EVENTS frames' listed)
+                numbers.pop()
+                self.events.pop()
+                self.events_dropped += 1
         else:
             self.events_dropped += 1
 
@@ -424,13 +435,16 @@ class ReportCollector:
         """Exceptions decoded before profile `auto` chose their slave's device (standard input) told as
         the file tells them: with the chosen device's meaning (meaning.py device_meaning: p.38's clause, a
         refused read-only write's, the causes the request picks)."""
-        for index, slave, function, code, told, request in self._pending:
+        numbers, events = self._event_numbers, self.events
+        for number, slave, function, code, told, request in self._pending:
             meaning = device_meaning(self._device(slave), function, code, request)  # type: ignore[misc]
             text = event_text(function, code, meaning)
             if text == told:
                 continue
-            if index is not None:
-                self.events[index] = (*self.events[index][:3], text, None)
+            for index in range(bisect_left(numbers, number), bisect_right(numbers, number)):
+                if events[index][1] == "exception" and events[index][3] == told:  # (if listed)
+                    events[index] = (*events[index][:3], text, None)
+                    break
             self.groups.retell("exception", slave, told, text)
         self._pending.clear()
 
