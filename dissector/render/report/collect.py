@@ -33,6 +33,7 @@ from typing import Any, Iterator
 from dissector.decode.pairing import trusted_request
 from dissector.model import Frame, Item, Kind, Register
 from dissector.render.history import UNREADABLE, History
+from dissector.render.pcapwriter import finer_than_micros
 # (Columns, drawn and Y_DIGITS are the report's from here too: health.py, the codegen, the tests)
 from dissector.render.report.columns import Y_DIGITS, Columns, compact_json as _json, drawn, new_columns
 from dissector.render.report.groups import EventGroups
@@ -88,6 +89,7 @@ class ReportCollector:
         self.history = History(annotate) if history is None else history
         self.history.listeners.append(self)
         self.timed: bool | None = None
+        self.nanos = False  # times told with 9 decimals (time_units)
         self.origin: float | None = None
         self.width = 0.0
         self.limit = 0.0  # x beyond which the columns double
@@ -140,6 +142,11 @@ class ReportCollector:
                 merged[col // 2] = merged.get(col // 2, 0) + count
             counts.clear()
             counts.update(merged)
+
+    def time_units(self, units: int | None) -> None:
+        """An input's time units a second (a pcap's, a pcapng interface's; None: none known): where
+        microseconds cannot hold its times, the page tells times with 9 decimals (-V's rule: timefmt.detail_digits)."""
+        self.nanos = self.nanos or bool(units and finer_than_micros(units))
 
     def new_input(self, title: str) -> None:
         """The next of several files read as one bus (render/buses.py): its frames numbered on."""
@@ -408,7 +415,7 @@ class ReportCollector:
         self._retell()
         digits = self._digits()
         origin = self._shift()
-        parameters = [self._parameter(key, series, points) for key, series in self._drawn()]
+        parameters = [self._parameter(key, series, points) for key, series in self.drawn_series()]
         columns = []
         width = self.width
         for kind in EVENT_KINDS:
@@ -455,7 +462,7 @@ class ReportCollector:
     def parameters_json_pieces(self) -> Iterator[str]:
         """parameters_json's text in pieces, a series each (html.py writes them one by one)."""
         yield "["
-        for index, (key, series) in enumerate(self._drawn()):
+        for index, (key, series) in enumerate(self.drawn_series()):
             yield ("," if index else "") + self._parameter_json(key, series)
         yield "]"
 
@@ -478,7 +485,8 @@ class ReportCollector:
         """What the data's x are relative to: the first item's time, or 0 (frame numbers as they are)."""
         return (self.origin or 0.0) if self.timed else 0.0
 
-    def _drawn(self) -> list[tuple[tuple[int, int, int], Series]]:
+    def drawn_series(self) -> list[tuple[tuple[int, int, int], Series]]:
+        """The series drawn, in the order of data()'s parameters."""
         return [(key, series) for key, series in sorted(self.series.items()) if series.values or series.marks]
 
     def _parameter(self, key: tuple[int, int, int], series: Series, points: bool) -> dict[str, Any]:

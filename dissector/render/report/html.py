@@ -167,7 +167,7 @@ def _bus_pieces(collector: ReportCollector, stats: StatsCollector, extras: dict[
     bus, health = extras.get("bus"), extras.get("health")
     give_back()  # (the decoding's freed memory: the page's objects are made next)
     data = collector.data(points=False)
-    when = _clock(data, extras.get("time_format", "r"))
+    when = _clock(data, extras.get("time_format", "r"), collector.nanos)
     summary = stats.report(with_parameters=False)  # parameters: the collector draws its own
     slaves = _slaves(stats)
     data["slaves"] = [
@@ -241,6 +241,7 @@ def _bus_pieces(collector: ReportCollector, stats: StatsCollector, extras: dict[
     parts.append(f'<h2 id="{anchor}parameters">Parameters</h2>')
     single = single_values(collector, data)
     parts.extend(parameter_index(data, single, anchor))
+    exact = [series.marks for _key, series in collector.drawn_series()]  # (data's x are rounded to us)
     for index, parameter in enumerate(data["parameters"]):
         if index in single:
             continue
@@ -250,8 +251,8 @@ def _bus_pieces(collector: ReportCollector, stats: StatsCollector, extras: dict[
         extra = ", ".join(filter(None, [parameter["name"], unit_heading(parameter["unit"]),
                                          "steps" if parameter["step"] else None]))
         marks = "".join(
-            f'<li class="mark" data-x="{x}">{_esc(when(x + data["origin"]))}: {_esc(text)}</li>'
-            for x, text in parameter["marks"]
+            f'<li class="mark" data-x="{x}">{_esc(when(at))}: {_esc(text)}</li>'
+            for (x, text), (at, _text) in zip(parameter["marks"], exact[index])
         )
         if parameter["marks_dropped"]:
             marks += f"<li>… {parameter['marks_dropped']} more</li>"
@@ -302,10 +303,6 @@ def _bus_pieces(collector: ReportCollector, stats: StatsCollector, extras: dict[
     for piece in collector.parameters_json_pieces():
         yield piece.replace("<", "\\u003c")
     yield "}</script>\n"
-
-
-def _when(x: float, timed: bool) -> str:
-    return f"{x:.6f}" if timed else f"#{int(x)}"
 
 
 def write_report(

@@ -13,16 +13,19 @@ from dissector.render.outages import frames_cited
 from dissector.render.report.collect import ReportCollector
 from dissector.render.stats_store import TABLE_NAMES
 from dissector.render.report.markup import _details, _esc, _ms, _table, cited
+from dissector.render.pcapwriter import NANOS
 from dissector.render.timefmt import Clock
 
 MAX_GROUP_ROWS = 1000
 
 
-def _clock(data: dict[str, Any], time_format: str) -> Callable[[float], str]:
-    """An absolute x (epoch seconds, or a frame number without timestamps) as -t shows it."""
+def _clock(data: dict[str, Any], time_format: str, nanos: bool = False) -> Callable[[float], str]:
+    """An absolute x (epoch seconds, or a frame number without timestamps) as -t shows it; `nanos`: with 9
+    decimals, from the stamps' nanoseconds (microseconds cannot hold the capture's times: collect.py time_units)."""
     if not data["timed"]:
         return lambda x: cited(data, int(x))
-    clock = Clock("r" if time_format in ("d", "dd") else time_format, first=data["origin"])
+    clock = Clock("r" if time_format in ("d", "dd") else time_format, first=data["origin"],
+                  units=NANOS if nanos else None)
     return lambda x: clock.text(SimpleNamespace(time=x))  # type: ignore[arg-type]
 
 
