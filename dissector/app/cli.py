@@ -180,6 +180,7 @@ class Sinks:
             self.watch.clock.units = units  # (its lines' column, as the summary's)
         if self.report is not None:
             self.report.collector = bus.report
+            bus.report.time_units(units)  # (the page's times: 9 decimals where microseconds cannot hold them)
         if self.bus is not None:
             if key is not None:  # (its warning names it)
                 self.bus.warn = lambda text: self.env.stderr.write(f"{PROG}: warning: {shown(title)}: {text}\n")
