@@ -903,19 +903,19 @@ local DATA = {
     ["rules"] = {
       [1] = {
         { "fixed", 8 },
-        { "count8", 2, 5 },
+        { "counted", 2, 5, 1 },
       },
       [2] = {
         { "fixed", 8 },
-        { "count8", 2, 5 },
+        { "counted", 2, 5, 1 },
       },
       [3] = {
         { "fixed", 8 },
-        { "count8", 2, 5 },
+        { "counted", 2, 5, 1 },
       },
       [4] = {
         { "fixed", 8 },
-        { "count8", 2, 5 },
+        { "counted", 2, 5, 1 },
       },
       [5] = {
         { "fixed", 8 },
@@ -953,42 +953,42 @@ local DATA = {
       },
       [12] = {
         { "fixed", 4 },
-        { "count8", 2, 5 },
+        { "counted", 2, 5, 1 },
       },
       [15] = {
-        { "count8", 6, 9 },
+        { "counted", 6, 9, 1 },
         { "fixed", 8 },
         { "by_quantity", 4, 9, 0, 6, 9 },
       },
       [16] = {
-        { "count8", 6, 9 },
+        { "counted", 6, 9, 1 },
         { "fixed", 8 },
         { "by_quantity", 4, 9, 2, 6, 9 },
       },
       [17] = {
         { "fixed", 4 },
-        { "count8", 2, 5 },
+        { "counted", 2, 5, 1 },
       },
       [20] = {
-        { "count8", 2, 5 },
-        { "count8", 2, 5 },
+        { "counted", 2, 5, 1 },
+        { "counted", 2, 5, 1 },
       },
       [21] = {
-        { "count8", 2, 5 },
-        { "count8", 2, 5 },
+        { "counted", 2, 5, 1 },
+        { "counted", 2, 5, 1 },
       },
       [22] = {
         { "fixed", 10 },
         { "fixed", 10 },
       },
       [23] = {
-        { "count8", 10, 13 },
-        { "count8", 2, 5 },
+        { "counted", 10, 13, 1 },
+        { "counted", 2, 5, 1 },
         { "by_quantity", 8, 13, 2, 10, 13 },
       },
       [24] = {
         { "fixed", 6 },
-        { "count16", 2, 6 },
+        { "counted", 2, 6, 2 },
       },
       [43] = {
         {
@@ -4437,17 +4437,12 @@ local function fixed(length)
   return function() return length end
 end
 
-local function count8(position, extra)
+-- A length by a count field (table.Counted): `extra` + the byte (width 1) or word (2) at `position`.
+local function counted(position, extra, width)
+  local last = position + width - 1
   return function(b, i, n)
-    if i + position >= n then return NEED end
-    return extra + b[i + position]
-  end
-end
-
-local function count16(position, extra)
-  return function(b, i, n)
-    if i + position + 1 >= n then return NEED end
-    return extra + b[i + position] * 256 + b[i + position + 1]
+    if i + last >= n then return NEED end
+    return extra + (width == 1 and b[i + position] or b[i + position] * 256 + b[i + position + 1])
   end
 end
 
@@ -4505,7 +4500,7 @@ end
 -- Length rules per function code (request, response, by quantity): generated from dissector/protocol/table.py.
 local RULES = {}
 local makers = {
-  fixed = fixed, count8 = count8, count16 = count16,
+  fixed = fixed, counted = counted,
   scan = scan, select = select, mei_objects = mei_objects, by_quantity = by_quantity,
 }
 function make_rule(spec) return makers[spec[1]](spec[2], spec[3], spec[4], spec[5], spec[6]) end
@@ -4585,7 +4580,8 @@ end
 M.ECHO_CODES, M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE = ECHO_CODES, EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE
 M.MIN_ADU, M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = MIN_ADU, NEED, NOISE, NOISE_ITEM_MAX, NONE
 M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE, M.await_echo = NO_INTERPRETATION, REQUEST, RESPONSE, await_echo
-M.awaited, M.data_bytes, M.interpretations, M.possible_start = awaited, data_bytes, interpretations, possible_start
+M.awaited, M.counted, M.data_bytes, M.interpretations = awaited, counted, data_bytes, interpretations
+M.possible_start = possible_start
 end
 
 -- ---- vw3.stream: lua/src/stream.lua ----
@@ -4597,7 +4593,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, ECHO_CODES, FRAMING, MAX_ADU, MIN_ADU, NEED = DATA, ECHO_CODES, FRAMING, MAX_ADU, MIN_ADU, NEED
 local NOISE, NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo = NOISE, NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo
-local crc_string_ok, floor, format, math, pairs, type = crc_string_ok, floor, format, math, pairs, type
+local counted, crc_string_ok, data_bytes, floor, format = counted, crc_string_ok, data_bytes, floor, format
+local math, pairs, type = math, pairs, type
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request): a record that is the usual answer to the
@@ -4828,7 +4825,7 @@ local function awaits_answer(frame)
 end
 
 -- The length of the normal answer a request implies, where the protocol table fixes it by the request
--- (framing/answers.py): an answer counted by a byte count (count8) whose lifting rule has that count follow the
+-- (framing/answers.py): an answer counted by a byte count (one byte) whose lifting rule has that count follow the
 -- quantity the request asks (`request.quantity`, FC1..4 and FC23's reads). By code: the request's quantity word's
 -- place in the frame, the count's unit and plus, the answer's length besides its byte count.
 local ANSWERS = {}
@@ -4838,7 +4835,8 @@ do
     local count, request = answer.rule and lifts[answer.rule].count, by_code.request[code]
     local asked = request and request.rule and lifts[request.rule].quantity
     local counted = DATA.protocol.rules[code][2]
-    if count ~= nil and count.of == "request.quantity" and type(asked) == "string" and counted[1] == "count8" then
+    if count ~= nil and count.of == "request.quantity" and type(asked) == "string" and counted[1] == "counted"
+        and counted[4] == 1 then
       ANSWERS[code] = { places[request.layout][asked].at, count.unit, count.plus, counted[3] }
     end
   end
@@ -4850,9 +4848,7 @@ local function answer_length(frame)
   local rule = ANSWERS[frame.fn]
   if rule == nil or frame.data_len < rule[1] then return nil end
   local b, at = frame.b, frame.data_at + rule[1] - 2
-  local quantity = b[at] * 256 + b[at + 1]
-  local data = rule[2] == 0 and math.floor((quantity + 7) / 8) or quantity * rule[2]
-  return rule[4] + rule[3] + data
+  return rule[4] + rule[3] + data_bytes(b[at] * 256 + b[at + 1], rule[2])
 end
 
 -- The answer a request of the quick lanes (lane.request, lua/src/records.lua) leaves awaited: the request, with
@@ -4991,8 +4987,8 @@ local DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE = DATA, EXCEPTION, FR
 local MIN_ADU, NEED, NOISE_ITEM_MAX, NONE = MIN_ADU, NEED, NOISE_ITEM_MAX, NONE
 local NO_INTERPRETATION, REPEAT_PROBE, REQUEST, RESPONSE = NO_INTERPRETATION, REPEAT_PROBE, REQUEST, RESPONSE
 local TOO_SHORT, add_noise, add_skipped, awaited = TOO_SHORT, add_noise, add_skipped, awaited
-local boundary_at, crc16, crc_lengths, crc_ok_at, crc_scan = boundary_at, crc16, crc_lengths, crc_ok_at, crc_scan
-local cut_reason, emit, first_above, first_after = cut_reason, emit, first_above, first_after
+local boundary_at, counted, crc16, crc_lengths, crc_ok_at = boundary_at, counted, crc16, crc_lengths, crc_ok_at
+local crc_scan, cut_reason, emit, first_above, first_after = crc_scan, cut_reason, emit, first_above, first_after
 local interpretations, math, no_frame, not_the_answer = interpretations, math, no_frame, not_the_answer
 local possible_start, repeats, scanned, silence_after = possible_start, repeats, scanned, silence_after
 local table, time_at = table, time_at
@@ -5393,17 +5389,19 @@ local function bounded_run(s, b, i, n, final)
   return 0
 end
 
--- The length the table's layout of `kind` at i takes (bounded.py _expected_length), 0: none it fixes.
-local function expected_length(s, b, i, n, kind)
+-- The reading of `kind` among the interpretations at i: its length rule's answer (length, is_scan, ...), nil: none.
+local function reading_of(s, b, i, n, kind)
   local list = interpretations(s, b[i], b[i + 1], b, i, n)
   for index = 1, #list do
-    if list[index][1] == kind then
-      local length, is_scan = list[index][2](b, i, n)
-      if is_scan then return 0 end
-      return length >= MIN_ADU and length or 0
-    end
+    if list[index][1] == kind then return list[index][2](b, i, n) end
   end
-  return 0
+  return nil
+end
+
+-- The length the table's layout of `kind` at i takes (bounded.py _expected_length), 0: none it fixes.
+local function expected_length(s, b, i, n, kind)
+  local length, is_scan = reading_of(s, b, i, n, kind)
+  return length ~= nil and not is_scan and length >= MIN_ADU and length or 0
 end
 
 
@@ -5427,18 +5425,10 @@ local function cut_request(s, b, i, n, silence)
   if n - i < 2 or awaited(s, b, i, n) or not bounded_start(s, i) then return nil end
   local slave, code = b[i], b[i + 1]
   if not ((slave >= 1 and slave <= MAX_SLAVE) or (slave == 0 and not DATA.not_broadcast[code])) then return nil end
-  local list = interpretations(s, slave, code, b, i, n)
-  for index = 1, #list do
-    if list[index][1] == REQUEST then
-      local length, is_scan = list[index][2](b, i, n)
-      if is_scan or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then
-        return nil
-      end
-      if checks_out(s, b, i, n) or intact_inside(s, b, i, n - i, n, true) then return nil end
-      return cut_reason(REQUEST, n - i, length, silence)
-    end
-  end
-  return nil
+  local length, is_scan = reading_of(s, b, i, n, REQUEST)
+  if length == nil or is_scan or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then return nil end
+  if checks_out(s, b, i, n) or intact_inside(s, b, i, n - i, n, true) then return nil end
+  return cut_reason(REQUEST, n - i, length, silence)
 end
 
 -- Do the bytes from i up to the first silence after it begin a frame the silence cuts, weighed as at the end of the
@@ -8356,7 +8346,8 @@ package.preload["vw3.pack"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pack"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, EXCEPTION, NOISE, REQUEST, RESPONSE, next, type = DATA, EXCEPTION, NOISE, REQUEST, RESPONSE, next, type
+local DATA, EXCEPTION, NOISE, REQUEST, RESPONSE, next = DATA, EXCEPTION, NOISE, REQUEST, RESPONSE, next
+local pairs, pcall, tostring, type = pairs, pcall, tostring, type
 
 -- What a record keeps of a frame for the later passes, packed: numbers, slots of one flat array per
 -- stream (st.flat), the item being the number of its first slot. A table with named keys keeps the hash
@@ -8494,6 +8485,21 @@ function pack.settle(st)
     end
   end
   for index = #list, kept + 1, -1 do list[index] = nil end
+end
+
+-- A record decoded again into the state `fresh` by decode(...) (a failure kept as the record's error, shown
+-- there), its items packed (vw3.records' lane.again, vw3.dissector's decode_again).
+function pack.redo(fresh, number, bytes, decode, ...)
+  local ok, result = pcall(decode, ...)
+  if not ok then result = { length = #bytes, error = tostring(result) } end
+  fresh.records[number] = result
+  if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
+end
+
+-- The state `fresh` takes st's place (the same table: `state` and udp_states keep naming it).
+function pack.take_place(st, fresh)
+  for key in pairs(st) do st[key] = nil end
+  for key, value in pairs(fresh) do st[key] = value end
 end
 M.KIND_NUMBER, M.NUMBER_KIND, M.bit_slot, M.crc_slot = KIND_NUMBER, NUMBER_KIND, bit_slot, crc_slot
 M.head_slot, M.pack, M.put_flat, M.run_slot, M.span_slot = head_slot, pack, put_flat, run_slot, span_slot
@@ -9087,13 +9093,9 @@ function lane.again(st)
   end
   for number = first, last do
     local bytes = kept[number]
-    if bytes ~= nil then
-      local time = records[number] or nil
-      local ok, result = pcall(lane.decode, fresh, bytes, #bytes, time, number)
-      if not ok then result = { length = #bytes, error = tostring(result) } end
-      records[number] = result -- (over its first decoding, which is done with)
+    if bytes ~= nil then -- (over its first decoding, which is done with)
+      pack.redo(fresh, number, bytes, lane.decode, fresh, bytes, #bytes, records[number] or nil, number)
       kept[number] = nil
-      if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
     end
   end
   if paused then collectgarbage("setpause", pause) end
@@ -9102,9 +9104,7 @@ function lane.again(st)
   -- Records read after this (Wireshark's packet details opened during a live capture) are read once, as
   -- vw3-decode --live reads them: a frame of a slave still judged is provisional again.
   fresh.going_on = true
-  -- (the same table: `state` and udp_states keep naming it)
-  for key in pairs(st) do st[key] = nil end
-  for key, value in pairs(fresh) do st[key] = value end
+  pack.take_place(st, fresh)
 end
 M.dissect_record, M.finish = dissect_record, finish -- (the pure part's entry points: main.lua)
 M.finish_safely = finish_safely
@@ -10368,7 +10368,7 @@ local DATA, DissectorTable, MODE_REACH, Proto, REQUEST = DATA, DissectorTable, M
 local RESPONSE, add_register, add_text, apply_prefs = RESPONSE, add_register, add_text, apply_prefs
 local device_now, dissect_now, ended, ex, finish_all = device_now, dissect_now, ended, ex, finish_all
 local ipairs, lane, mask_register, new_state, os, pack = ipairs, lane, mask_register, new_state, os, pack
-local package, pair_scan, pairs, pcall, pf, pinfo_cols = package, pair_scan, pairs, pcall, pf, pinfo_cols
+local package, pair_scan, pcall, pf, pinfo_cols = package, pair_scan, pcall, pf, pinfo_cols
 local pinfo_number, pinfo_port_type, proto, record_ns = pinfo_number, pinfo_port_type, proto, record_ns
 local sample_modes, show_record, stream_state, tostring = sample_modes, show_record, stream_state, tostring
 local tree_text, tvb_raw, type, wtap = tree_text, tvb_raw, type, wtap
@@ -10389,16 +10389,11 @@ local function decode_again(st, kept, mode, except)
   fresh.sample = st.sample
   for index = 1, #kept do
     local number, bytes_kept = kept[index][1], kept[index][2]
-    if number ~= except then
-      -- (no pinfo: the record's is gone; its time is the one kept)
-      local ok, result = pcall(dissect_now, fresh, nil, nil, number, bytes_kept)
-      if not ok then result = { length = #bytes_kept, error = tostring(result) } end
-      fresh.records[number] = result
-      if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
+    if number ~= except then -- (no pinfo: the record's is gone; its time is the one kept)
+      pack.redo(fresh, number, bytes_kept, dissect_now, fresh, nil, nil, number, bytes_kept)
     end
   end
-  for key in pairs(st) do st[key] = nil end
-  for key, value in pairs(fresh) do st[key] = value end
+  pack.take_place(st, fresh)
 end
 
 -- A capture's first record at the epoch is timed (time 0) when the second is not, untimed otherwise

@@ -182,7 +182,7 @@ def _length_rule(rule: table.LengthRule) -> list[Any]:
     if isinstance(rule, table.Fixed):
         return ["fixed", rule.length]
     if isinstance(rule, table.Counted):
-        return ["count8" if rule.width == 1 else "count16", rule.position, rule.extra]
+        return ["counted", rule.position, rule.extra, rule.width]
     if isinstance(rule, table.Scan):
         return ["scan", rule.minimum]
     if isinstance(rule, table.Select):

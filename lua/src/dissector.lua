@@ -20,16 +20,11 @@ local function decode_again(st, kept, mode, except)
   fresh.sample = st.sample
   for index = 1, #kept do
     local number, bytes_kept = kept[index][1], kept[index][2]
-    if number ~= except then
-      -- (no pinfo: the record's is gone; its time is the one kept)
-      local ok, result = pcall(dissect_now, fresh, nil, nil, number, bytes_kept)
-      if not ok then result = { length = #bytes_kept, error = tostring(result) } end
-      fresh.records[number] = result
-      if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
+    if number ~= except then -- (no pinfo: the record's is gone; its time is the one kept)
+      pack.redo(fresh, number, bytes_kept, dissect_now, fresh, nil, nil, number, bytes_kept)
     end
   end
-  for key in pairs(st) do st[key] = nil end
-  for key, value in pairs(fresh) do st[key] = value end
+  pack.take_place(st, fresh)
 end
 
 -- A capture's first record at the epoch is timed (time 0) when the second is not, untimed otherwise

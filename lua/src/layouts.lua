@@ -18,17 +18,12 @@ local function fixed(length)
   return function() return length end
 end
 
-local function count8(position, extra)
+-- A length by a count field (table.Counted): `extra` + the byte (width 1) or word (2) at `position`.
+local function counted(position, extra, width)
+  local last = position + width - 1
   return function(b, i, n)
-    if i + position >= n then return NEED end
-    return extra + b[i + position]
-  end
-end
-
-local function count16(position, extra)
-  return function(b, i, n)
-    if i + position + 1 >= n then return NEED end
-    return extra + b[i + position] * 256 + b[i + position + 1]
+    if i + last >= n then return NEED end
+    return extra + (width == 1 and b[i + position] or b[i + position] * 256 + b[i + position + 1])
   end
 end
 
@@ -86,7 +81,7 @@ end
 -- Length rules per function code (request, response, by quantity): generated from dissector/protocol/table.py.
 local RULES = {}
 local makers = {
-  fixed = fixed, count8 = count8, count16 = count16,
+  fixed = fixed, counted = counted,
   scan = scan, select = select, mei_objects = mei_objects, by_quantity = by_quantity,
 }
 function make_rule(spec) return makers[spec[1]](spec[2], spec[3], spec[4], spec[5], spec[6]) end

@@ -141,3 +141,18 @@ function pack.settle(st)
   end
   for index = #list, kept + 1, -1 do list[index] = nil end
 end
+
+-- A record decoded again into the state `fresh` by decode(...) (a failure kept as the record's error, shown
+-- there), its items packed (vw3.records' lane.again, vw3.dissector's decode_again).
+function pack.redo(fresh, number, bytes, decode, ...)
+  local ok, result = pcall(decode, ...)
+  if not ok then result = { length = #bytes, error = tostring(result) } end
+  fresh.records[number] = result
+  if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
+end
+
+-- The state `fresh` takes st's place (the same table: `state` and udp_states keep naming it).
+function pack.take_place(st, fresh)
+  for key in pairs(st) do st[key] = nil end
+  for key, value in pairs(fresh) do st[key] = value end
+end

@@ -574,13 +574,9 @@ function lane.again(st)
   end
   for number = first, last do
     local bytes = kept[number]
-    if bytes ~= nil then
-      local time = records[number] or nil
-      local ok, result = pcall(lane.decode, fresh, bytes, #bytes, time, number)
-      if not ok then result = { length = #bytes, error = tostring(result) } end
-      records[number] = result -- (over its first decoding, which is done with)
+    if bytes ~= nil then -- (over its first decoding, which is done with)
+      pack.redo(fresh, number, bytes, lane.decode, fresh, bytes, #bytes, records[number] or nil, number)
       kept[number] = nil
-      if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
     end
   end
   if paused then collectgarbage("setpause", pause) end
@@ -589,8 +585,6 @@ function lane.again(st)
   -- Records read after this (Wireshark's packet details opened during a live capture) are read once, as
   -- vw3-decode --live reads them: a frame of a slave still judged is provisional again.
   fresh.going_on = true
-  -- (the same table: `state` and udp_states keep naming it)
-  for key in pairs(st) do st[key] = nil end
-  for key, value in pairs(fresh) do st[key] = value end
+  pack.take_place(st, fresh)
 end
 M.dissect_record, M.finish = dissect_record, finish -- (the pure part's entry points: main.lua)

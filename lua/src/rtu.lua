@@ -400,17 +400,19 @@ local function bounded_run(s, b, i, n, final)
   return 0
 end
 
--- The length the table's layout of `kind` at i takes (bounded.py _expected_length), 0: none it fixes.
-local function expected_length(s, b, i, n, kind)
+-- The reading of `kind` among the interpretations at i: its length rule's answer (length, is_scan, ...), nil: none.
+local function reading_of(s, b, i, n, kind)
   local list = interpretations(s, b[i], b[i + 1], b, i, n)
   for index = 1, #list do
-    if list[index][1] == kind then
-      local length, is_scan = list[index][2](b, i, n)
-      if is_scan then return 0 end
-      return length >= MIN_ADU and length or 0
-    end
+    if list[index][1] == kind then return list[index][2](b, i, n) end
   end
-  return 0
+  return nil
+end
+
+-- The length the table's layout of `kind` at i takes (bounded.py _expected_length), 0: none it fixes.
+local function expected_length(s, b, i, n, kind)
+  local length, is_scan = reading_of(s, b, i, n, kind)
+  return length ~= nil and not is_scan and length >= MIN_ADU and length or 0
 end
 
 
@@ -434,18 +436,10 @@ local function cut_request(s, b, i, n, silence)
   if n - i < 2 or awaited(s, b, i, n) or not bounded_start(s, i) then return nil end
   local slave, code = b[i], b[i + 1]
   if not ((slave >= 1 and slave <= MAX_SLAVE) or (slave == 0 and not DATA.not_broadcast[code])) then return nil end
-  local list = interpretations(s, slave, code, b, i, n)
-  for index = 1, #list do
-    if list[index][1] == REQUEST then
-      local length, is_scan = list[index][2](b, i, n)
-      if is_scan or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then
-        return nil
-      end
-      if checks_out(s, b, i, n) or intact_inside(s, b, i, n - i, n, true) then return nil end
-      return cut_reason(REQUEST, n - i, length, silence)
-    end
-  end
-  return nil
+  local length, is_scan = reading_of(s, b, i, n, REQUEST)
+  if length == nil or is_scan or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then return nil end
+  if checks_out(s, b, i, n) or intact_inside(s, b, i, n - i, n, true) then return nil end
+  return cut_reason(REQUEST, n - i, length, silence)
 end
 
 -- Do the bytes from i up to the first silence after it begin a frame the silence cuts, weighed as at the end of the

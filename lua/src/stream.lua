@@ -233,7 +233,7 @@ local function awaits_answer(frame)
 end
 
 -- The length of the normal answer a request implies, where the protocol table fixes it by the request
--- (framing/answers.py): an answer counted by a byte count (count8) whose lifting rule has that count follow the
+-- (framing/answers.py): an answer counted by a byte count (one byte) whose lifting rule has that count follow the
 -- quantity the request asks (`request.quantity`, FC1..4 and FC23's reads). By code: the request's quantity word's
 -- place in the frame, the count's unit and plus, the answer's length besides its byte count.
 local ANSWERS = {}
@@ -243,7 +243,8 @@ do
     local count, request = answer.rule and lifts[answer.rule].count, by_code.request[code]
     local asked = request and request.rule and lifts[request.rule].quantity
     local counted = DATA.protocol.rules[code][2]
-    if count ~= nil and count.of == "request.quantity" and type(asked) == "string" and counted[1] == "count8" then
+    if count ~= nil and count.of == "request.quantity" and type(asked) == "string" and counted[1] == "counted"
+        and counted[4] == 1 then
       ANSWERS[code] = { places[request.layout][asked].at, count.unit, count.plus, counted[3] }
     end
   end
@@ -255,9 +256,7 @@ local function answer_length(frame)
   local rule = ANSWERS[frame.fn]
   if rule == nil or frame.data_len < rule[1] then return nil end
   local b, at = frame.b, frame.data_at + rule[1] - 2
-  local quantity = b[at] * 256 + b[at + 1]
-  local data = rule[2] == 0 and math.floor((quantity + 7) / 8) or quantity * rule[2]
-  return rule[4] + rule[3] + data
+  return rule[4] + rule[3] + data_bytes(b[at] * 256 + b[at + 1], rule[2])
 end
 
 -- The answer a request of the quick lanes (lane.request, lua/src/records.lua) leaves awaited: the request, with
