@@ -131,6 +131,7 @@ typedef struct {
     double last_end, busy, answer_end;
     Quantile gaps, turnaround, responses[256];
     unsigned long long histogram[GAP_BINS], below_t35, close[256];
+    unsigned long long same_stamp_overlaps; /* BusTiming.same_stamp_overlaps */
     Run runs[256];
     /* The file read, from 0 (bus_line's new inputs): several read as one bus number their frames each
      * from 1, so an outage names the files of its frames (BusTiming.new_input). */
@@ -203,6 +204,7 @@ static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, in
     }
     b->timed = 1;
     double duration = (double)length * b->char_time, end = t->d + duration;
+    int same_stamp = b->previous.has && time_sub(t, &b->previous) == 0;
     if (!b->first.has) {
         b->first = b->stretch = *t;
         b->reach = end;
@@ -223,6 +225,7 @@ static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, in
         double gap = t->d - b->last_end;
         if (quantile_add(tallies, &b->gaps, TALLY_GAPS, 0, gap) < 0) return -1;
         if (gap < b->t35) b->below_t35++;
+        if (same_stamp && rint(gap / RESOLUTION) < 0) b->same_stamp_overlaps++;
         size_t index = 0;
         while (index < GAP_BINS - 1 && gap * 1000 >= gap_edges_ms[index]) index++;
         b->histogram[index]++;

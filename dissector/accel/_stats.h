@@ -765,7 +765,7 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
     /* (Py_BuildValue releases its N arguments when one of them is NULL) */
     PyObject *last_end = b->has_last_end ? PyFloat_FromDouble(b->last_end) : Py_NewRef(Py_None);
     PyObject *answer_end = b->has_answer_end ? PyFloat_FromDouble(b->answer_end) : Py_NewRef(Py_None);
-    return Py_BuildValue("{s:O,s:K,s:N,s:N,s:d,s:N,s:K,s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:K,s:N,s:N,s:d,s:d}", "timed",
+    return Py_BuildValue("{s:O,s:K,s:N,s:N,s:d,s:N,s:K,s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:K,s:N,s:N,s:d,s:d,s:K}", "timed",
                          b->timed ? Py_True : Py_False, "untimed", b->untimed, "first", time_value(&b->first),
                          "last_end", last_end, "busy", b->busy, "answer_end", answer_end, "below_t35", b->below_t35,
                          "histogram", histogram, "gaps", quantile_value(&b->gaps), "turnaround",
@@ -773,7 +773,7 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
                          runs_value(b->runs, 256, 1), "outages", runs_value(b->outages, b->outage_count, 0), "first_seen",
                          time_value(&b->first_seen), "last_seen", time_value(&b->last_seen), "backwards", b->backwards,
                          "previous", time_value(&b->previous), "stretch", time_value(&b->stretch), "reach", b->reach,
-                         "spanned", b->spanned);
+                         "spanned", b->spanned, "same_stamp_overlaps", b->same_stamp_overlaps);
 }
 
 /* Stats(max_keys, max_params=MAX_PARAMETERS, max_tally=MAX_TALLY, tables=b"", device_tables=None): the poll

@@ -8,7 +8,9 @@ interface description says: `19200 8N2`). From there:
 - inter-frame gaps: the silence between the end of one item and the start of the next, as a
   histogram, with the gaps shorter than t3.5 counted (the Serial Line Guide's frame separator:
   3.5 character times up to 19200 baud, 1.75 ms above); a negative gap is a timestamp earlier than
-  the previous item's end (an adapter that stamps bursts) and counts as below t3.5. t3.5 is an RTU
+  the previous item's end (an adapter that stamps bursts) and counts as below t3.5 (a wrong --baud is
+  said when items overlap, not counting an item stamped at the time of the one before: a later part of
+  its record, whose start the stamp does not give). t3.5 is an RTU
   rule: a Modbus ASCII frame runs from ':' to CR LF (Serial Line Guide 2.5.2), so no silence
   separates ASCII frames and their gaps are not judged (`t35`, `gaps_below_t35` null when every
   capture of the bus is ASCII); the ASCII rule, up to 1 s between a frame's characters, is
@@ -169,6 +171,10 @@ class BusTiming:
     gaps: Quantiles = field(default_factory=Quantiles)
     gap_histogram: list[int] = field(default_factory=lambda: [0] * (len(GAP_EDGES_MS) + 1))
     gaps_below_t35: int = 0
+    # Negative gaps of an item stamped at the very time of the item before it: a later part of the same
+    # record, read or dump line (its stamp is its first byte's), whose own start is unknown. They say
+    # nothing of the line speed, so overlap_warning leaves them out (a tap's glitch byte after each frame).
+    same_stamp_overlaps: int = 0
     turnaround: Quantiles = field(default_factory=Quantiles)
     responses: dict[int, Quantiles] = field(default_factory=dict)
     _response_tally: Coarse = field(default_factory=Coarse)  # the histograms of all of `responses`
@@ -233,6 +239,7 @@ class BusTiming:
         back.items, back.previous, back.stretch = state["backwards"], stamp(state["previous"]), stamp(state["stretch"])
         back.reach, back.spanned = state["reach"], state["spanned"]
         self.gaps_below_t35, self.gap_histogram = state["below_t35"], state["histogram"]
+        self.same_stamp_overlaps = state["same_stamp_overlaps"]
         self.gaps = _quantiles(*state["gaps"], store.tallies(TALLY_GAPS).get(0))
         self.turnaround = _quantiles(*state["turnaround"], store.tallies(TALLY_TURNAROUND).get(0))
         buckets = store.tallies(TALLY_RESPONSES)
@@ -293,6 +300,7 @@ class BusTiming:
         end = time + duration
         back = self.backwards
         previous = back.previous
+        same_stamp = previous is not None and time - previous == 0  # (Stamps subtract exactly, as _bus.h)
         if self.first is None:
             self.first = back.stretch = time
             back.reach = end
@@ -313,6 +321,8 @@ class BusTiming:
             self.gaps.add(gap)
             if gap < self._gap_floor:
                 self.gaps_below_t35 += 1
+            if same_stamp and round(gap / RESOLUTION) < 0:  # (a negative bucket: overlaps() counts it)
+                self.same_stamp_overlaps += 1
             milliseconds = gap * 1000
             index = 0
             while index < len(GAP_EDGES_MS) and milliseconds >= GAP_EDGES_MS[index]:
@@ -456,9 +466,10 @@ class BusTiming:
 
     def overlaps(self) -> int:
         """Items that start before the previous one ends at this line speed (by more than half a
-        percentile bucket, 5 us): a negative gap, so a negative turnaround too."""
+        percentile bucket, 5 us): a negative gap, so a negative turnaround too; not those stamped at the
+        very time of the item before (same_stamp_overlaps: one record's later items)."""
         self.take_back()
-        return sum(count for key, count in self.gaps.buckets.items() if key < 0)
+        return sum(count for key, count in self.gaps.buckets.items() if key < 0) - self.same_stamp_overlaps
 
     def overlap_warning(self) -> str | None:
         """One line when the captured frames overlap at the line speed used (a wrong --baud: the bus
