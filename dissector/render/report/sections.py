@@ -151,7 +151,7 @@ def parameter_index(data: dict[str, Any], single: dict[int, str], anchor: str = 
     parts = ['<p class="index">' + " ".join(links) + "</p>"]
     if single:
         parts.append(f'<h3 id="{anchor}single">Parameters with a single value</h3>' + _table(
-            ["slave", "address", "code", "name", "value", "values"],
+            ["slave", "address", "code", "name", "value", "readings"],
             [[parameters[index]["slave"], parameters[index].get("label") or parameters[index]["address"],
               parameters[index]["code"] or "",
               parameters[index]["name"] or "", single[index], parameters[index]["values"]]
