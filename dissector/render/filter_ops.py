@@ -13,7 +13,7 @@ from dataclasses import replace
 from typing import Any
 
 from dissector.render.filter_expr import (
-    ARITHMETIC, Operand, arithmetic, constant, counted, frame_level, negative, typed,
+    ARITHMETIC, Operand, arithmetic, constant, counted, frame_level, frame_values, negative, typed,
 )
 from dissector.render.filter_fields import (
     ALIASES, FRAME_FIELDS, REGISTER_FIELDS, TIME_FILTER_FIELDS, unknown_pdu_key,
@@ -21,7 +21,7 @@ from dissector.render.filter_fields import (
 from dissector.render.filter_functions import call
 from dissector.render.filter_error import FilterError
 from dissector.render.filter_lexer import Token, tokenize
-from dissector.render.filter_match import as_bytes, compile_regex, match_op, quantify
+from dissector.render.filter_match import as_bytes, compile_regex, in_members, item_elements, match_op, quantify
 from dissector.render.filter_syntax import layer_holds_first, parse_layer
 from dissector.render.filter_values import kind_of, type_name
 from dissector.render.glossary import field_type
@@ -31,7 +31,7 @@ COMPARISONS = ("==", "!=", "~=", "===", "<", "<=", ">", ">=")
 _LITERALS = ("number", "string", "char", "bytes", "dashed")
 
 
-def _is_field(token: Any) -> bool:
+def is_field(token: Any) -> bool:
     """A name that is a field (an unquoted word that is none stays the text or bytes it was)."""
     if token.kind != "name":
         return False
@@ -60,14 +60,14 @@ def needs_expression(tokens: list[Any], index: int) -> bool:
     if at(i, "op", *ARITHMETIC) or (at(i, "op", "&") and at(i + 2, "op", *ARITHMETIC)):
         return True
     if at(i, "op", "&") and (opens_operand(i + 1) and not at(i + 1, "op", "-", "+")
-                             or i + 1 < len(tokens) and _is_field(tokens[i + 1])):
+                             or i + 1 < len(tokens) and is_field(tokens[i + 1])):
         return True  # (slave & ${slave}, value & value: a bitwise and of two operands, as tshark's)
     if not at(i, "op", *COMPARISONS):
         return False
     right = i + 1
     if opens_operand(right):
         return True
-    if right < len(tokens) and _is_field(tokens[right]):
+    if right < len(tokens) and is_field(tokens[right]):
         return True
     return right < len(tokens) and tokens[right].kind in _LITERALS and at(right + 1, "op", *ARITHMETIC)
 
@@ -116,7 +116,7 @@ def _parse_unary(p: Any) -> Operand:
         return inner
     if token.kind == "name" and p.tokens[p.index + 1].kind == "punct" and p.tokens[p.index + 1].value == "(":
         return _parse_call(p)
-    if token.kind == "name" and _is_field(token):
+    if token.kind == "name" and is_field(token):
         return _parse_field(p)
     if token.kind == "reference":
         return parse_reference(p)
@@ -163,7 +163,7 @@ def parse_reference(p: Any) -> Operand:
     token = p.advance()
     written, hash_, layer = token.value.partition("#")
     name = Token("name", written, written, token.position + 2)
-    if not _is_field(name):  # a macro to tshark: its name is what comes before its arguments (${name:a;b})
+    if not is_field(name):  # a macro to tshark: its name is what comes before its arguments (${name:a;b})
         macro = token.value.partition(":")[0]
         if not re.fullmatch(r"[\w.]*", macro):
             raise p.error("invalid character in macro name (as tshark 4.0 says: vw3-decode has no display filter "
@@ -302,3 +302,44 @@ def _search(p: Any, token: Any, left: Operand) -> tuple[Any, bool]:
         raise p.error(f"{word} takes a text or bytes, not {p._describe(p.token)}")
     wanted = typed(p, constant(p, p.advance()), left.ftype).values({}, None)[0]
     return (lambda item, reg: any(wanted in v for v in values(item, reg))), left.register
+
+
+# -- sets with fields among their members ------------------------------------------------------------
+def parse_member(p: Any, field: str) -> Operand:
+    """A set's member that is a field or a function's result (`value in {address, 40}`, `slave in
+    {max(slave)}`), as tshark 4.0.17 takes one: one entity, no arithmetic (`{value + 1}` refused)."""
+    token = p.token
+    operand = _parse_call(p) if p.tokens[p.index + 1].kind == "punct" and p.tokens[p.index + 1].value == "(" \
+        else _parse_field(p)
+    if kind_of(operand.ftype) != kind_of(field_type(field)):
+        raise p.error(f"{field} and {operand.text} are not of compatible types ({field_type(field)}, "
+                      f"{operand.ftype}), as tshark says", token)
+    return operand
+
+
+def set_test(get: Any, register: bool, members: list[tuple[Any, Any]], every: bool) -> Any:
+    """`field in {SET}` with a field among the members, as tshark 4.0.17: over every occurrence of the frame
+    (each of the field's with each of a member's), some member holding (`all`: holding for every occurrence
+    of the field, each member apart). A range's bound must have one value (none: the member holds nothing;
+    several: tshark 4.0.17 aborts, vw3-decode's member holds nothing)."""
+    def lefts(item: Item) -> list[Any]:
+        elements = item_elements(item) if register else []
+        return [v for element in elements or [None] if (v := get(item, element)) is not None and v != []]
+
+    def bounds(bound: Any, item: Item) -> list[Any]:
+        return frame_values(bound, item) if isinstance(bound, Operand) else [bound]
+
+    def passes(member: tuple[Any, Any], values: list[Any], item: Item) -> bool:
+        low, high = member
+        if low is high and isinstance(low, Operand):  # a single member: each pair compared, as == and ===
+            others = frame_values(low, item)
+            if every:
+                return bool(values) and bool(others) and all(match_op("==", x, y) for x in values for y in others)
+            return any(match_op("==", x, y) for x in values for y in others)
+        lows, highs = bounds(low, item), bounds(high, item)
+        if len(lows) != 1 or len(highs) != 1:
+            return False
+        inside = [in_members(x, [(lows[0], highs[0])]) for x in values]
+        return bool(inside) and all(inside) if every else any(inside)
+
+    return lambda item, reg: any(passes(member, values, item) for values in [lefts(item)] for member in members)

@@ -69,7 +69,8 @@ def _slice_range(p: Any, part: str, token: Token) -> tuple[int | None, bool, int
 
 def parse_set(p: Any, field: str, ftype: str) -> list[tuple[Any, Any]]:
     """`{a, b, c..d}`: a list of (low, high) pairs. As tshark 4.0.17 reads a set, members are separated
-    by commas (`{3 4}`, `{3,}` and `{}` refused) and a range stands inside braces (`in 3..4` refused)."""
+    by commas (`{3 4}`, `{3,}` and `{}` refused) and a range stands inside braces (`in 3..4` refused);
+    a bound may be a field or a function's result (an Operand: filter_ops.set_test)."""
     if ftype == "list":
         raise p.error(f"in needs a number or text field; {field} is a {_TYPE_WORDS[ftype]}")
     if not p.at("punct", "{"):
@@ -113,6 +114,8 @@ def _parse_bound(p: Any, field: str, ftype: str) -> Any:
     if p.token.kind == "reference":
         p.parse_reference()  # (a field, or refused as tshark refuses a macro)
         return REFERENCE
+    if p.token.kind == "name" and (p.is_field(p.token) or p.tokens[p.index + 1].text == "("):
+        return p.parse_member()  # (a field or a function: value in {address, 40}, filter_ops.set_test)
     value_token = p.token
     value = p.parse_value(field, ftype)
     p._check_choice(field, value, value_token)

@@ -8,7 +8,8 @@ Syntax, close to Wireshark's:
                                             0c-03 0c.03 0c03), slices [start:length] [first-last] [:n]
                                             [n:] [-2:] [4], a string its characters' bytes ("\\x0c")
     function in {3, 4, 23}                  sets: members separated by commas, ranges inside braces
-    address in {8400..8402, 8501}           ({3 4} and in 3..4 refused, as tshark 4.0.17 refuses them)
+    address in {8400..8402, 8501}           ({3 4} and in 3..4 refused, as tshark 4.0.17 refuses them);
+    value in {address, slave..600}          a member may be a field or a function, as tshark's
     warnings contains "byte count"          substring of a string, or of any element of a list
     notes matches "became (protected|non-existent)"   regular expression (also ~), case-insensitive
                                             as Wireshark's; (?-i) at the start makes it case-sensitive
@@ -102,7 +103,10 @@ from dissector.render.filter_match import (
     search,
 )
 
-from dissector.render.filter_ops import needs_expression, parse_expression_test, parse_reference
+from dissector.render.filter_expr import Operand
+from dissector.render.filter_ops import (
+    is_field, needs_expression, parse_expression_test, parse_member, parse_reference, set_test,
+)
 from dissector.render.filter_syntax import parse_layer, parse_set, parse_slice
 from dissector.render.filter_quantifiers import elements_pass, every_of, every_present, parse_quantified
 from dissector.render.filter_values import TIME_TYPES, bool_literal, kind_of, negative_for_unsigned, time_literal, type_name, uint_limit
@@ -125,6 +129,7 @@ class _Parser:
         self.index = 0
         self.depth = 0
         self.every = False  # inside `all RELATION`: every occurrence must pass (filter_quantifiers.py)
+        self.member_of = ""  # the field of the set being parsed (its members: parse_member)
         self.presence: Test | None = None
 
     @property
@@ -375,7 +380,10 @@ class _Parser:
                 raise self.error(f"in takes numbers or texts; {field} is a byte string (tshark 4.0 refuses "
                                  "it too): compare with == or contains")
             self.advance()
+            self.member_of = field
             members = self.parse_set(field, ftype)
+            if any(isinstance(bound, Operand) for member in members for bound in member):
+                return set_test(get, register, members, self.every), False  # (value in {address}, tshark's)
             if field == "address":
                 def inside(item: Item, reg: dict[str, Any] | None, members: list[Any] = members) -> bool:
                     return any(in_members(v, members) for v in address_values(reg))
@@ -518,6 +526,13 @@ class _Parser:
 
     def parse_reference(self) -> Any:
         return parse_reference(self)  # ${slave} (render/filter_ops.py; a set's member: filter_syntax.py)
+
+    def parse_member(self) -> Any:
+        return parse_member(self, self.member_of)  # a set's member that is a field or a function
+
+    @staticmethod
+    def is_field(token: Token) -> bool:
+        return is_field(token)
 
     # -- messages -----------------------------------------------------------------------------
     def _check_choice(self, field: str, value: Any, token: Token) -> None:
