@@ -2,13 +2,14 @@
 
 A KEY is any key of the NDJSON object (`frame`, `time`, `slave`, `response_time`, ...), a key inside
 `fields` as `fields.KEY`, `time_relative`, `time_delta` or `time_delta_displayed` (seconds, as tshark's
-frame.time_* fields: from the first item, the previous captured, the previous shown), or a register key (`address`, `value`, `code`, `name`, `scaled`, `status`,
-...), which has one occurrence per register (and bit) the frame carries, empty where that register has
-no such key, so that the register columns of a line stay aligned; `address` then lists the addresses
-the frame names without carrying them (a read request's window), which -Y's `address` tests too, and the
-other register keys have an empty occurrence for each of them (`-E occurrence=l` of `-e address -e value`
-stays one register's). The plugin's vw3.reg.address has them too (hidden), but tshark writes no empty
-occurrence of a field: `-e vw3.reg.address -e vw3.reg.value` does not line up on a request. Lists
+frame.time_* fields: from the first item, the previous captured, the previous shown), or a register key
+(`address`, `value`, `code`, `name`, `scaled`, `status`, ...), written as tshark writes the plugin's
+vw3.reg.KEY: a text key (`code`, `name`, `status`, ...) has one occurrence per register (and bit) the frame
+carries, empty where that register has none (as the plugin's hidden empty text field), so that
+`-E occurrence=f` names the first register's; a number key (`value`, `scaled`, `words`) has only the values
+there are (tshark writes no empty number); `address` (and `label`, where there is one) then lists the
+addresses the frame names without carrying them (a read request's window), which -Y's `address` tests too,
+as the plugin's hidden vw3.reg.address (a request's `value` is empty, not `,,`). Lists
 (`warnings`, `notes`, a `fields.KEY` such as `fields.values`) have one occurrence per element. A key the Wireshark plugin has a field for is
 written as tshark 4.0 writes that field (data/fields.toml): `crc` 0x7734, `scaled` 4, `response_time`
 0.020000000, and `broadcast`, `unanswered` nothing where false; `time` as tshark's frame.time_epoch (9 decimals). As tshark: `-E occurrence=f|l|a` picks the first, last or all
@@ -43,6 +44,7 @@ from dissector.render.filter_fields import (  # not filters: -Y only
     ALIASES, CATALOGUE, FRAME_FIELDS, ONLY_TRUE, RECORD_KEYS, REGISTER_FIELDS,
 )
 from dissector.render.filter_match import item_elements
+from dissector.render.glossary import field_type
 from dissector.protocol.printable import printable
 from dissector.render.timefmt import TIME_FIELDS
 
@@ -200,21 +202,22 @@ def epoch_text(time: float) -> str:
 
 
 SHOWN_AS = {entry["key"]: shown for entry in CATALOGUE if "key" in entry and (shown := _shown_as(entry))}
+TEXT_KEYS = frozenset(key for key in REGISTER_FIELDS if field_type(key) == "FT_STRING")  # (an empty one kept)
 SHOWN_AS["time"] = epoch_text  # (no plugin field: tshark's own frame.time_epoch)
 
 
 def _occurrences(record: dict[str, Any], key: str) -> list[Any]:
     head, _dot, rest = ALIASES.get(key, key).partition(".")
     if head in REGISTER_FIELDS:
-        # One occurrence per register, empty where the register has no such key (8400 has no code):
-        # the columns of one frame line up, and -E occurrence=f names the same register in each.
-        # Then the addresses the frame names without their values (a read request's window), as -Y's
-        # `address` tests them and the plugin's hidden vw3.reg.address (vw3.bit.address) has them; the other
-        # keys have an empty occurrence there, so that occurrence=l still pairs an address with its value, but
-        # `label`: a register window's PLC labels, as -Y's `label` tests them and the plugin's vw3.reg.label.
+        # As tshark writes the plugin's fields: a text key has one occurrence per register carried, empty
+        # where the register has none (8400 has no code: the plugin's hidden empty text); a number has only
+        # the values there are (an empty number field would crash tshark 4.0's comparisons). Then what the
+        # frame names without carrying it (a read request's window): its addresses and labels, as -Y's
+        # `address` and `label` test them and the plugin's hidden vw3.reg.address and vw3.reg.label have them.
         carried = len(record.get("registers") or []) + len(record.get("bits") or [])
-        return [element.get(head) if index < carried or head in ("address", "label") else None
-                for index, element in enumerate(item_elements(record))]
+        text = head in TEXT_KEYS
+        return [value for index, element in enumerate(item_elements(record))
+                if (value := element.get(head)) is not None or text and index < carried]
     value = record.get(RECORD_KEYS.get(head, head))
     if rest:
         for part in rest.split("."):

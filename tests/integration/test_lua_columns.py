@@ -75,18 +75,14 @@ def python_rows(pcap: Path, *options: str, stdin: bool = False, first: bool = Fa
         for key, cell in zip(keys, cells[3:]):
             # (one register without the key prints an empty cell: one empty occurrence, not none)
             if key == "address":  # (then the addresses named without values)
-                values[key] = cell.split(SEP) if count or cell else []
-                assert len(values[key]) >= count or (first and len(values[key]) == 1), (key, line)
-                named = len(values[key])
+                values[key] = cell.split(SEP) if cell else []  # (a number: none for a register without one)
                 continue
-            # (the addresses named without values: an empty occurrence of each other key, columns aligned)
-            occurrences = cell.split(SEP) if named else []
-            assert len(occurrences) == named or (first and len(occurrences) == 1), (key, line)
-            if key == "label":  # (a register window's PLC labels, as the plugin's hidden vw3.reg.label)
-                values[key] = occurrences[:count] + [label for label in occurrences[count:] if label]
-                continue
-            assert not any(occurrences[count:]), (key, line)
-            values[key] = occurrences[:count]
+            # (a text key: one occurrence per carried register, then, for label, a register window's PLC
+            # labels, as the plugin's hidden vw3.reg.label; a number key: only the values there are, as tshark)
+            occurrences = cell.split(SEP) if cell or (key in TEXT_KEYS and count) else []
+            if key in TEXT_KEYS and key != "label":
+                assert len(occurrences) == count or (first and len(occurrences) == 1), (key, line)
+            values[key] = occurrences
         rows[int(cells[0])] = values
     return rows
 

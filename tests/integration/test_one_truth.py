@@ -183,21 +183,23 @@ def test_stats_report_watch_and_fields_say_what_the_json_says(tmp_path: Path) ->
         if origin == 0 and not data["events_dropped"]:
             assert [(int(event[0]), event[2]) for event in listed] == protections, path
 
-        # -T fields: one row per item, register keys one occurrence per register
+        # -T fields: one row per item, as tshark writes the plugin's: a text key one occurrence per register
+        # (empty where it has none), a number key only the values there are
         status, out, _ = run_cli([path, "-T", "fields", "-e", "frame", "-e", "slave", "-e", "address",
                                   "-e", "value", "-e", "status", "-E", "separator=;", *options])
 
         def join(record: dict, key: str) -> str:
             elements = (record.get("registers") or []) + (record.get("bits") or [])
-            cells = ["" if element.get(key) is None else str(element[key]) for element in elements]
+            cells = ["" if element.get(key) is None else str(element[key]) for element in elements
+                     if element.get(key) is not None or key == "status"]
             start, quantity = record.get("start"), record.get("quantity")
             if start is not None and quantity is not None and record["kind"] != "exception":
                 # then the addresses the frame names without carrying them (a read request's window, README),
-                # an empty occurrence of every other register key for each (the columns stay aligned)
+                # nothing of the other register keys for them
                 carried = [element.get("address") for element in elements]
                 if carried[:1] != [start] or len(carried) != quantity:
                     window = [(start + k) % 65536 for k in range(min(max(quantity, 1), 2000))]
-                    cells += [str(address) if key == "address" else "" for address in window if address not in carried]
+                    cells += [str(address) for address in window if address not in carried and key == "address"]
             cell = ",".join(cells)
             # A cell holding the aggregator (or ; or ") is one double-quoted CSV cell (issue 32).
             return '"' + cell.replace('"', '""') + '"' if any(char in cell for char in ',;"') else cell

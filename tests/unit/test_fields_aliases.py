@@ -35,6 +35,6 @@ def test_words_is_a_register_key_of_e_and_y(monkeypatch: pytest.MonkeyPatch, pur
     argv = ["--map", str(energy), *ENERGY_READ]
     status, out, err = run_cli([*argv, "-T", "fields", "-e", "frame", "-e", "address", "-e", "words"])
     # (the request names 106 and 107 without values: `address` lists them, as -Y tests them; no words)
-    assert (status, out) == (0, "1\t106,107\t,\n2\t106,107\t2,0\n"), err
+    assert (status, out) == (0, "1\t106,107\t\n2\t106,107\t2,0\n"), err
     status, out, err = run_cli([*argv, "-Y", "words == 2", "-T", "fields", "-e", "frame"])
     assert (status, out) == (0, "2\n"), err
