@@ -27,13 +27,14 @@ def finer_than_micros(units: int) -> bool:
 
 def split_time(timestamp: float, units: int = MICROS) -> tuple[int, int]:
     """(seconds, fraction in 1/`units` s) as pcap and pcapng store them; the reader's seconds + fraction /
-    units gives it back (a pcapng's units: any if_tsresol, 2^-10 s or 10^-3 s as microseconds), but for a
-    tick nanoseconds do not hold (an odd 2^-10 s tick), which loses what editcap loses."""
+    units gives it back (a pcapng's units: any if_tsresol, 2^-10 s or 10^-3 s as microseconds)."""
     ns = getattr(timestamp, "ns", None)  # a Stamp keeps its source's integer nanoseconds
     if ns is not None:
-        # The ticks below these nanoseconds, as editcap 4.0.17 writes them (wiretap cuts a tick to nanoseconds,
-        # then nanoseconds to ticks): 167/1024 s, read as .163085937, is written 166; 10^-10 s 146 is 140.
-        return divmod(int(ns) * units // NANOS, units)  # type: ignore[return-value]
+        if NANOS % units == 0:
+            return divmod(int(ns) // (NANOS // units), units)  # type: ignore[return-value]
+        # 2^-10 s (or finer than ns): the tick the reader cut these nanoseconds from (Stamp.from_parts), the
+        # one whose cut gives them back (editcap's cut writes 166 of 167/1024 s: .163085937 read back .162109375)
+        return divmod(-(-int(ns) * units // NANOS), units)  # type: ignore[return-value]
     seconds = int(timestamp)
     fraction = int(round((timestamp - seconds) * units))
     if fraction >= units:
