@@ -5,7 +5,6 @@ showed 3. A 2^-n tick is the one its nanoseconds were cut from (167/1024 s: edit
 A pcap copy cannot hold such a resolution: said once on standard error."""
 from __future__ import annotations
 
-import shutil
 import struct
 import subprocess
 from pathlib import Path
@@ -13,6 +12,7 @@ from pathlib import Path
 import pytest
 
 from helpers import rtu, run_cli
+from lua_harness import ensure_tool
 from test_time_precision import START, _block
 
 REQUEST, ANSWER = rtu("01 03 0000 0001"), rtu("01 03 02 0007")
@@ -118,10 +118,10 @@ def test_pcap_copy_says_what_it_cannot_keep(tmp_path: Path) -> None:
     assert copy(us, tmp_path / "us.pcap")[1] == ""
 
 
-@pytest.mark.skipif(shutil.which("editcap") is None, reason="editcap is not installed")
 @pytest.mark.parametrize("resolution", [3, 7, 0])
 def test_as_editcap(tmp_path: Path, resolution: int) -> None:
     """Where editcap keeps a tick exactly (decimal resolutions), the copy is its copy, block for block."""
+    ensure_tool("editcap", "wireshark-common")  # (a missing tool fails, never skips)
     units = 10**resolution
     ticks = [START * units + units // 7, START * units + units // 7 + units // 60 + 1]
     original = pcapng(tmp_path / "in.pcapng", [resolution], [(0, ticks[0], REQUEST), (0, ticks[1], ANSWER)])

@@ -6,13 +6,13 @@ rounded: .163086 of tshark's .163085937). Microsecond and coarser decimal captur
 from __future__ import annotations
 
 import re
-import shutil
 import subprocess
 from pathlib import Path
 
 import pytest
 
 from helpers import run_cli, use_engine
+from lua_harness import ensure_tool
 from test_time_precision import BOTH, NANOS, RESOLUTIONS, START, pcap, pcapng
 
 
@@ -70,9 +70,9 @@ def test_terminal_tree_at_nine_decimals(tmp_path: Path) -> None:
     assert detail_text(frame, first, 9).splitlines()[1] == line
 
 
-@pytest.mark.skipif(shutil.which("tshark") is None, reason="tshark is not installed")
 def test_arrival_time_as_tshark(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """Every resolution: tshark -V's 9 digits where we show 9; else the first 6 of them (its zeros)."""
+    ensure_tool("tshark", "tshark")  # (a missing tool fails, never skips)
     for tsresol in RESOLUTIONS:
         units = 2 ** (tsresol & 0x7F) if tsresol & 0x80 else 10**tsresol
         first = START * units + units // 7

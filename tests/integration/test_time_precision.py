@@ -7,7 +7,6 @@ VW3_PURE_PYTHON=1; against tshark where it is installed."""
 from __future__ import annotations
 
 import re
-import shutil
 import struct
 import subprocess
 from pathlib import Path
@@ -15,6 +14,7 @@ from pathlib import Path
 import pytest
 
 from helpers import rtu, run_cli, use_engine
+from lua_harness import ensure_tool
 
 BOTH = pytest.mark.parametrize("pure", [False, True], ids=["engine", "python"])
 REQUEST, ANSWER = rtu("01 03 0000 0001"), rtu("01 03 02 0007")
@@ -127,9 +127,9 @@ def test_watch_lines_at_the_capture_precision(tmp_path: Path, monkeypatch: pytes
 RESOLUTIONS = [0, 1, 2, 3, 4, 6, 7, 9, 0x80 | 3, 0x80 | 4, 0x80 | 10, 0x80 | 20, 0x80 | 29, 0x80 | 30]
 
 
-@pytest.mark.skipif(shutil.which("tshark") is None, reason="tshark is not installed")
 @pytest.mark.parametrize("fmt", ["r", "ud", "e"])
 def test_time_column_as_tshark(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, fmt: str) -> None:
+    ensure_tool("tshark", "tshark")  # (a missing tool fails, never skips)
     for tsresol in RESOLUTIONS:
         units = 2 ** (tsresol & 0x7F) if tsresol & 0x80 else 10**tsresol
         first = START * units + units // 7

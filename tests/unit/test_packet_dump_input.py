@@ -5,13 +5,12 @@ character column taken for bytes), and `vw3-decode -x`'s own output read as 706 
 those text2pcap gives."""
 from __future__ import annotations
 
-import shutil
 import subprocess
 
-import pytest
 
 from conftest import ROOT
 from helpers import run_cli
+from lua_harness import ensure_tool
 
 ATV71 = str(ROOT / "captures" / "atv71_commissioning.pcap")
 MBRTU = ["-o", 'uat:user_dlts:"User 0 (DLT=147)","mbrtu","0","","0",""']
@@ -70,8 +69,9 @@ def test_a_hex_dump_without_character_column_stays_one(tmp_path):
     assert (status, out) == (0, "0000\n0c0320d000030eef\n")
 
 
-@pytest.mark.skipif(shutil.which("tshark") is None or shutil.which("text2pcap") is None, reason="needs tshark")
 def test_same_bytes_as_text2pcap(tmp_path):
+    ensure_tool("tshark", "tshark")  # (a missing tool fails, never skips)
+    ensure_tool("text2pcap", "wireshark-common")  # (a missing tool fails, never skips)
     dump = subprocess.run(["tshark", *MBRTU, "-r", ATV71, "-x"], capture_output=True, text=True, check=True).stdout
     (tmp_path / "x.txt").write_text(dump)
     subprocess.run(["text2pcap", "-q", "-l", "147", str(tmp_path / "x.txt"), str(tmp_path / "t.pcap")], check=True,

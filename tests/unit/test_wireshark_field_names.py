@@ -3,13 +3,13 @@
 and no word of the name vw3-decode gives the field (only frame.X had one). The error names it now."""
 from __future__ import annotations
 
-import shutil
 import subprocess
 
 import pytest
 
 from conftest import ROOT
 from helpers import run_cli
+from lua_harness import ensure_tool
 
 CAPTURE = str(ROOT / "captures" / "p38_protection.pcap")
 
@@ -36,9 +36,9 @@ def test_every_name_given_is_a_field():
         assert (status, err) == (0, ""), ours
 
 
-@pytest.mark.skipif(shutil.which("tshark") is None, reason="needs tshark")
 def test_tsharks_names_are_tsharks():
     """The mbrtu and modbus names are those tshark 4.0 has (a typo would name a field no one types)."""
+    ensure_tool("tshark", "tshark")  # (a missing tool fails, never skips)
     from dissector.render.filter_fields import FOREIGN_NAMES
 
     glossary = subprocess.run(["tshark", "-G", "fields"], capture_output=True, text=True, check=True).stdout
