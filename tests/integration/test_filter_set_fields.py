@@ -11,7 +11,7 @@ import sys
 
 import pytest
 
-from lua_harness import ROOT, assert_same_frames, run_tshark
+from lua_harness import ROOT, assert_refused_as_tshark, assert_same_frames
 
 ATV, NOISY = "atv71_commissioning.pcap", "noisy_bus.pcap"
 CASES = [
@@ -51,13 +51,7 @@ def test_selects_what_tshark_selects(capture: str, ours: str, wiresharks: str) -
 @pytest.mark.parametrize(("ours", "wiresharks", "said"), REFUSED)
 def test_refused_where_tshark_refuses(ours: str, wiresharks: str, said: str) -> None:
     path = ROOT / "captures" / ATV
-    mine = subprocess.run([sys.executable, "-m", "dissector", "-Y", ours, str(path)],
-                          capture_output=True, text=True, timeout=300)
-    assert (mine.returncode, mine.stdout) == (2, "") and "Traceback" not in mine.stderr
-    lines = mine.stderr.splitlines()
-    assert lines[0].startswith(said) and lines[1] == f"  {ours}" and lines[2].strip() == "^"
-    result = run_tshark(path, "-Y", wiresharks)
-    assert result.returncode != 0 and result.stdout == ""
+    assert_refused_as_tshark(path, ours, wiresharks, said)
 
 
 def test_a_range_bound_of_several_values_holds_nothing() -> None:

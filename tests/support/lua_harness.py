@@ -73,6 +73,18 @@ def run_tshark(pcap: Path, *args: str, timeout: float = 900, two_pass: bool = Tr
 
 
 
+def assert_refused_as_tshark(path: Path, ours: str, wiresharks: str, said: str) -> None:
+    """`vw3-decode -Y ours` is refused (exit 2, nothing on standard output) with a message starting `said` and
+    the filter under it with a caret, as tshark with the plugin refuses `-Y wiresharks`."""
+    mine = subprocess.run([sys.executable, "-m", "dissector", "-Y", ours, str(path)],
+                          capture_output=True, text=True, timeout=300)
+    assert (mine.returncode, mine.stdout) == (2, "") and "Traceback" not in mine.stderr
+    lines = mine.stderr.splitlines()
+    assert lines[0].startswith(said) and lines[1] == f"  {ours}" and lines[2].strip() == "^"
+    result = run_tshark(path, "-Y", wiresharks)
+    assert result.returncode != 0 and result.stdout == ""
+
+
 def assert_same_frames(path: Path, ours: str, wiresharks: str) -> None:
     """`vw3-decode -Y ours` selects the frame numbers tshark with the plugin selects with `-Y wiresharks`."""
     command = [sys.executable, "-m", "dissector", "-Y", ours, "-T", "fields", "-e", "frame", str(path)]
