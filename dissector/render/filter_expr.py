@@ -63,13 +63,17 @@ def counted(p: Any, operand: Operand, size: int, token: Token) -> Operand:
     return operand
 
 
-def frame_level(operand: Operand) -> Operand:
-    """`operand` over the whole frame, every occurrence of every register, as tshark takes two fields with
-    several occurrences each: every value of one meets every value of the other (`value == address`,
-    `value - address`), not register by register."""
-    if not operand.register:
-        return operand
-    return replace(operand, values=lambda item, reg: frame_values(operand, item), register=False)
+def frame_level(left: Operand, right: Operand) -> tuple[Operand, Operand]:
+    """Two operands that both read registers, over the whole frame, every occurrence of every register, as
+    tshark takes two fields with several occurrences each: every value of one meets every value of the
+    other (`value == address`, `value - address`), not register by register. Others as they are."""
+    if not (left.register and right.register):
+        return left, right
+
+    def whole(operand: Operand) -> Operand:
+        return replace(operand, values=lambda item, reg: frame_values(operand, item), register=False)
+
+    return whole(left), whole(right)
 
 
 def frame_values(operand: Operand, item: Item) -> list[Any]:
@@ -189,8 +193,7 @@ def arithmetic(p: Any, op: Token, left: Operand, right: Operand) -> Operand:
         return counted(p, folded, size, op)
     ftype = left.ftype if left.fold is None else right.ftype
     left, right = typed(p, left, ftype), typed(p, right, ftype)
-    if left.register and right.register:
-        left, right = frame_level(left), frame_level(right)
+    left, right = frame_level(left, right)
     if kind_of(left.ftype) != kind_of(right.ftype):
         raise p.error(f"{left.text} and {right.text} are not type compatible ({left.ftype}, "
                       f"{right.ftype})", op)

@@ -259,8 +259,7 @@ def _comparison(op: str, left: Operand, right: Operand, every: bool = False) -> 
     """Some pair passes `op`; `~=` some pair differs; `!=` none is equal and `===` none differs, of a
     left and a right that have values (over the frame's registers when one reads a register's); under
     `all` (`every`) no pair fails `op`."""
-    if left.register and right.register:  # (every occurrence of one with every one of the other, as tshark)
-        left, right = frame_level(left), frame_level(right)
+    left, right = frame_level(left, right)  # (every occurrence of one with every one of the other, as tshark)
     lefts, rights = left.values, right.values
     register = left.register or right.register
     wanted = {"~=": "!=", "!=": "==", "===": "!="}.get(op, op)

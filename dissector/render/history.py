@@ -107,6 +107,10 @@ _NOW = object()  # finish(): held frames read with their slave's profile now
 MAX_HELD = 16384
 
 
+def _may_change(choice: Any) -> bool:
+    """A frame named with `choice` (None: before any) may be named otherwise by a later choice."""
+    return choice is None or not choice.final
+
 class Listener(Protocol):
     def state(self, frame: Frame, register: Register, event: int, changed: bool) -> None:
         """A register that set its parameter's state (READ, UNREADABLE, CONFIRM, WRITE_OBSERVED); a 32-bit
@@ -204,10 +208,14 @@ class History:
     def _counted(self, slave: int, choice: Any) -> None:
         """Frames of `slave` named with `choice` are counted: if profile `auto` may still change it, a
         later change cannot count them again (late_choices)."""
-        selector = self._selector
-        if (selector is not None and not selector.frozen and slave != 0 and slave not in self._forced
-                and (choice is None or not choice.final)):
+        if self._choosing(slave) and _may_change(choice):
             self._unsure.add(slave)
+
+    def _choosing(self, slave: int) -> bool:
+        """Profile `auto` chooses this slave's device as the stream goes: not frozen on a first pass, and
+        neither slave 0 (broadcasts: named with the device the slaves share) nor a slave given a profile."""
+        selector = self._selector
+        return selector is not None and not selector.frozen and slave != 0 and slave not in self._forced
 
     def held(self, frame: Frame) -> bool:
         """The history holds `frame` back until its slave's choice is final (or the input ends): it was
@@ -216,11 +224,9 @@ class History:
 
     def _holding(self, slave: int) -> bool:
         """Frames of this slave named now would be held: profile `auto` chooses as the stream goes (not
-        frozen on a first pass), for outputs made at the end only (no --watch), and the slave is neither
-        slave 0 (broadcasts: named with the device the slaves share), forced, nor counted past the cap."""
-        selector = self._selector
-        return (selector is not None and not selector.frozen and slave != 0 and slave not in self._forced
-                and self.overflow is None and all(getattr(each, "at_end", False) for each in self.listeners))
+        frozen on a first pass: _choosing), for outputs made at the end only (no --watch), and not past the cap."""
+        return (self._choosing(slave) and self.overflow is None
+                and all(getattr(each, "at_end", False) for each in self.listeners))
 
     def _overflow(self, number: int) -> None:
         """Past MAX_HELD frames held: each settled slave's are counted now, with the profile its last one
@@ -232,8 +238,7 @@ class History:
 
     def _late(self, frame: Frame) -> bool:
         """A frame (not provisional) named with a choice that its slave's later traffic may still change."""
-        choice = frame.profile_choice
-        return (choice is None or not choice.final) and self._holding(frame.slave)
+        return _may_change(frame.profile_choice) and self._holding(frame.slave)
 
     def holds(self, slave: int) -> bool:
         """The compiled engine leaves this slave's frames to the Python stages (Annotator.compilable): the
