@@ -165,6 +165,9 @@ class History:
         if holds is not None:
             holds.append(self.holds)  # (the compiled engine asks: Annotator.compilable)
         self._masked: dict[int, int | None] = {}  # the annotator's Mask Write values (Annotator.masked)
+        # While a held slave's frames are read again (_replay): its registers' values as its device's parameter
+        # memory holds them, by (table, address), None a read status: the value a Mask Write gives (_mask)
+        self._replayed: dict[tuple[int, int], int | None] | None = None
         if getattr(annotate, "masked", 0) is None:
             annotate.masked = self._masked  # type: ignore[union-attr]
 
@@ -294,8 +297,15 @@ class History:
     def _replay(self, frames: list[Frame], choice: object) -> None:
         chosen = getattr(self._annotate, "chosen_profile", None)
         profile = None if chosen is None or choice is _NOW else chosen(choice)
-        for frame in frames:
-            self._apply(frame, profile=profile, held=True)
+        # (a held Mask Write was decoded before its device kept a memory: its value is the replay's)
+        device = None if self._device is None else self._device(frames[0].slave)
+        tracks = device is not None and device.track and (profile is None or device.profile is profile)
+        self._replayed = {} if tracks else None
+        try:
+            for frame in frames:
+                self._apply(frame, profile=profile, held=True)
+        finally:
+            self._replayed = None
 
     @property
     def _watching(self) -> list[Any]:
@@ -367,6 +377,12 @@ class History:
         if frame.kind is Kind.RESPONSE:
             masked = self._masked
             known = masked.get(frame.number, value) if provisional else masked.pop(frame.number, value)
+            memory = self._replayed
+            if memory is not None and not provisional:  # (memory.remember_mask's reckoning)
+                key = (self.tables(frame.slave)[frame.function], fields.address)
+                current = 0 if fields.and_mask == 0 else memory.get(key)
+                known = None if current is None else (
+                    (current & fields.and_mask) | (fields.or_mask & ~fields.and_mask & 0xFFFF))
             if known is not None:
                 self._events(frame, [self._named(frame, fields.address, known)], CONFIRM, confirmed=True,
                              provisional=provisional)
@@ -436,6 +452,7 @@ class History:
         origin = TABLES[frame.function]  # (where a later device's tables move it: SlaveTables)
         registers = self._values(slave, registers)
         listeners = self.listeners if event in (CONFIRM, WRITE_OBSERVED) else None
+        memory = self._replayed if event == CONFIRM else None
         for register in registers:
             address = register.address
             if address is None:
@@ -443,6 +460,8 @@ class History:
                     self.registers_without_address += 1
                 continue
             changed = param(slave, address, event, register.value, register.code, register.text, table, origin)
+            if memory is not None:
+                memory[(table, address)] = register.value
             if listeners:
                 for listener in listeners:
                     listener.state(frame, register, event, changed)
@@ -458,6 +477,7 @@ class History:
         origin = TABLES[frame.function]  # (where a later device's tables move it: SlaveTables)
         registers = self._values(slave, registers)
         listeners = self.listeners
+        memory = self._replayed
         for register in registers:
             address = register.address
             if address is None:
@@ -470,6 +490,8 @@ class History:
             else:
                 event = READ
                 changed = param(slave, address, READ, register.value, register.code, register.text, table, origin)
+            if memory is not None:
+                memory[(table, address)] = register.value if event == READ else None
             if listeners:
                 for listener in listeners:
                     listener.state(frame, register, event, changed)
