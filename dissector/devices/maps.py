@@ -285,6 +285,16 @@ def _sniff(header: str) -> str:
     return best if counts[best] else SEPARATORS[0]
 
 
+def _cells(line: str, delimiter: str) -> list[str]:
+    """A map line's cells. A cell may be as long as a map may be, as in the plugin's reader: csv's own
+    limit (131,072 characters) refused a long name with csv's words, where the plugin took it."""
+    limit = csv.field_size_limit(MAX_MAP_BYTES)
+    try:
+        return next(csv.reader([line], delimiter=delimiter))
+    finally:
+        csv.field_size_limit(limit)
+
+
 def parse_map(text: str, origin: str) -> RegisterMap:
     """Parse map text; `origin` names the file in error messages."""
     header: list[str] | None = None
@@ -301,7 +311,7 @@ def parse_map(text: str, origin: str) -> RegisterMap:
         if header is None:
             delimiter = _sniff(line)
         try:
-            cells = next(csv.reader([line], delimiter=delimiter))
+            cells = _cells(line, delimiter)
         except csv.Error as error:
             raise ProfileError(f"{origin}:{number}: {error}") from None
         if header is None:
