@@ -5,6 +5,8 @@ driver with RTS would otherwise drive the bus.
 """
 from __future__ import annotations
 
+import errno
+import os
 from dataclasses import dataclass
 
 import serial
@@ -50,8 +52,15 @@ def open_port(settings: PortSettings) -> serial.SerialBase:
         port.rts = False
         port.open()
     except PORT_ERRORS as error:
-        raise LiveError(f"cannot open {settings.port}: {reason(error)}", ExitStatus.BAD_INPUT) from None
+        why = reason(error)
+        if why == NOT_A_TTY and os.path.isfile(settings.port):
+            # `--live capture.pcap`: a file given where a port belongs
+            why = "a file, not a serial port (decode a capture file without --live)"
+        raise LiveError(f"cannot open {settings.port}: {why}", ExitStatus.BAD_INPUT) from None
     return port
+
+
+NOT_A_TTY = "not a serial port (it takes no line settings)"
 
 
 def reason(error: BaseException) -> str:
@@ -59,6 +68,10 @@ def reason(error: BaseException) -> str:
     for candidate in (error.__context__, error):
         if isinstance(candidate, OSError) and candidate.strerror and "[Errno" not in candidate.strerror:
             return candidate.strerror
+        # pyserial's "Could not configure port: (25, 'Inappropriate ioctl for device')": a file or a
+        # device that is no terminal (/dev/null), where a port was meant
+        if isinstance(candidate, TERMIOS_ERRORS) and candidate.args[:1] == (errno.ENOTTY,):
+            return NOT_A_TTY
     if isinstance(error, TERMIOS_ERRORS) and len(error.args) == 2:
         return f"the port refused the settings: {error.args[1]}"
     return str(error)
