@@ -44,13 +44,19 @@ class PortSettings:
 def open_port(settings: PortSettings) -> serial.SerialBase:
     try:
         port = serial.serial_for_url(settings.port, do_not_open=True)
-        port.baudrate = settings.baud
+        custom = _custom_speed(port, settings.baud)
+        port.baudrate = STANDARD_SPEED if custom else settings.baud
         port.parity = PARITIES[settings.parity]
         port.stopbits = settings.stopbits
         port.bytesize = settings.bytesize
         port.timeout = READ_TIMEOUT
         port.rts = False
         port.open()
+        if custom:
+            # A tty left at a custom speed (14400 baud by the run before) refuses to be opened at one again
+            # (pyserial: termios "Invalid argument"); from a standard speed it takes it.
+            port.baudrate = settings.baud
+            port.reset_input_buffer()  # (what came at the standard speed, as open() drops what came before)
     except PORT_ERRORS as error:
         why = reason(error)
         if why == NOT_A_TTY and os.path.isfile(settings.port):
@@ -58,6 +64,16 @@ def open_port(settings: PortSettings) -> serial.SerialBase:
             why = "a file, not a serial port (decode a capture file without --live)"
         raise LiveError(f"cannot open {settings.port}: {why}", ExitStatus.BAD_INPUT) from None
     return port
+
+
+STANDARD_SPEED = 38400  # a speed every POSIX tty knows (B38400), opened at before a custom one
+
+
+def _custom_speed(port: serial.SerialBase, baud: int) -> bool:
+    """Whether a POSIX port takes `baud` as a custom speed (no termios B constant: 14400, 28800, 76800)."""
+    standard = getattr(port, "BAUDRATE_CONSTANTS", None)  # (pyserial's POSIX ports; not URLs nor Windows)
+    return standard is not None and termios is not None and baud not in standard and not hasattr(
+        termios, f"B{baud}")
 
 
 NOT_A_TTY = "not a serial port (it takes no line settings)"
