@@ -15,7 +15,7 @@ written as tshark 4.0 writes that field (data/fields.toml): `crc` 0x7734, `scale
 0.020000000, and `broadcast`, `unanswered` nothing where false; `time` as tshark's frame.time_epoch (9 decimals). As tshark: `-E occurrence=f|l|a` picks the first, last or all
 occurrences, joined by `-E aggregator=` (default ,); `-E separator=` (default tab; /t tab, /s space)
 goes between fields; `-E quote=d|s|n` surrounds every value (the header is never quoted);
-`-E header=y` names the fields on a first line; `-E bom=y` starts with a UTF-8 byte order mark.
+(a field without occurrence stays empty, unquoted, as tshark's) `-E header=y` names the fields on a first line; `-E bom=y` starts with a UTF-8 byte order mark.
 With quote=d a double quote inside a value is doubled (RFC 4180), so a spreadsheet reads it back.
 
 Values are data from the bus and from map files: control characters are written as escapes (\x1b).
@@ -43,8 +43,7 @@ from dissector.errors import UsageError
 from dissector.render.filter_fields import (  # not filters: -Y only
     ALIASES, CATALOGUE, FRAME_FIELDS, ONLY_TRUE, RECORD_KEYS, REGISTER_FIELDS,
 )
-from dissector.render.filter_match import item_elements
-from dissector.render.glossary import field_type
+from dissector.render.filter_match import item_elements, register_value
 from dissector.protocol.printable import printable
 from dissector.render.timefmt import TIME_FIELDS
 
@@ -202,7 +201,6 @@ def epoch_text(time: float) -> str:
 
 
 SHOWN_AS = {entry["key"]: shown for entry in CATALOGUE if "key" in entry and (shown := _shown_as(entry))}
-TEXT_KEYS = frozenset(key for key in REGISTER_FIELDS if field_type(key) == "FT_STRING")  # (an empty one kept)
 SHOWN_AS["time"] = epoch_text  # (no plugin field: tshark's own frame.time_epoch)
 
 
@@ -214,10 +212,9 @@ def _occurrences(record: dict[str, Any], key: str) -> list[Any]:
         # the values there are (an empty number field would crash tshark 4.0's comparisons). Then what the
         # frame names without carrying it (a read request's window): its addresses and labels, as -Y's
         # `address` and `label` test them and the plugin's hidden vw3.reg.address and vw3.reg.label have them.
-        carried = len(record.get("registers") or []) + len(record.get("bits") or [])
-        text = head in TEXT_KEYS
-        return [value for index, element in enumerate(item_elements(record))
-                if (value := element.get(head)) is not None or text and index < carried]
+        # (-Y reads the same occurrences: filter_match.register_value)
+        return [value for element in item_elements(record)
+                if (value := register_value(record, element, head)) is not None]
     value = record.get(RECORD_KEYS.get(head, head))
     if rest:
         for part in rest.split("."):
@@ -247,9 +244,12 @@ class FieldsWriter:
         out = []
         for key in options.fields:
             values = _occurrences(record, key)
-            if values and options.occurrence == "f":
+            if not values:  # (no occurrence: nothing, not even quotes, as tshark; an empty one is quoted)
+                out.append("")
+                continue
+            if options.occurrence == "f":
                 values = values[:1]
-            elif values and options.occurrence == "l":
+            elif options.occurrence == "l":
                 values = values[-1:]
             shown = SHOWN_AS.get(ALIASES.get(key, key))
             text = printable(options.aggregator.join(

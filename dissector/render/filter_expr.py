@@ -13,7 +13,8 @@ and where an operation or a comparison meets register fields on both sides (`val
 `value - 1 == value`): those take every occurrence of the frame, as tshark's, each of one side with each
 of the other (frame_level). Types are -G fields' (render/glossary.py):
 whole numbers add, subtract, multiply, divide (dropping the fraction; by 0: no value), take a remainder
-and a bitwise and (&, below + and -); decimals the same but &; times add and subtract; texts, bytes and
+and a bitwise and (&, below + and -); decimals add, subtract, multiply and divide (by 0: an infinity, or
+NaN, which compares equal to every number, as tshark's); times add and subtract; texts, bytes and
 true/false none. A literal takes the type of what it meets: `{slave * 1.5}` is refused as tshark
 refuses it. Costs stay bounded on hostile bytes: a text is at most a frame's, the pairs at most the
 frame's occurrences squared (MAX_PAIRS)."""
@@ -26,7 +27,7 @@ from typing import Any
 
 from dissector.render.filter_lexer import NUMBER, Token, number, parse_bytes
 from dissector.render.filter_match import item_elements
-from dissector.render.filter_values import bool_literal, kind_of, time_literal, type_name, uint_limit
+from dissector.render.filter_values import bool_literal, kind_of, time_literal, type_name, uint_limit, unsigned_type
 
 Item = dict[str, Any]
 Values = Callable[[Item, dict[str, Any] | None], list[Any]]
@@ -154,19 +155,20 @@ def _int_remainder(a: int, b: int) -> int | None:
     return None if quotient is None else a - b * quotient
 
 
-def _float_divide(a: float, b: float) -> float | None:
-    return None if b == 0 else a / b
-
-
-def _float_remainder(a: float, b: float) -> float | None:
-    return None if b == 0 else math.fmod(a, b)
+def _float_divide(a: float, b: float) -> float:
+    """IEEE's, as tshark 4.0.17 divides decimals: by 0, an infinity, or NaN for 0 / 0 (filter_match.compare)."""
+    if b != 0:
+        return a / b
+    if a == 0 or math.isnan(a):
+        return math.nan
+    return math.copysign(math.inf, a) * math.copysign(1.0, b)
 
 
 OPERATIONS: dict[str, dict[str, Callable[[Any, Any], Any]]] = {
     "int": {"+": lambda a, b: a + b, "-": lambda a, b: a - b, "*": lambda a, b: a * b, "/": _int_divide,
             "%": _int_remainder, "&": lambda a, b: a & b},
-    "float": {"+": lambda a, b: a + b, "-": lambda a, b: a - b, "*": lambda a, b: a * b, "/": _float_divide,
-              "%": _float_remainder},
+    # (no %: tshark 4.0.17 refuses it for a decimal, "FT_DOUBLE cannot %.")
+    "float": {"+": lambda a, b: a + b, "-": lambda a, b: a - b, "*": lambda a, b: a * b, "/": _float_divide},
     "time": {"+": lambda a, b: a + b, "-": lambda a, b: a - b},
 }
 
@@ -198,11 +200,33 @@ def arithmetic(p: Any, op: Token, left: Operand, right: Operand) -> Operand:
         raise p.error(f"{left.text} and {right.text} are not type compatible ({left.ftype}, "
                       f"{right.ftype})", op)
     operation = _operation(p, op, ftype, left.text)
+    if unsigned_type(left.ftype):
+        operation = _unsigned(op.value, operation)
     left_values, right_values = left.values, right.values
     combined = Operand(text, left.position, ftype,
                        lambda item, reg: _combine(operation, left_values(item, reg), right_values(item, reg)),
                        register=left.register or right.register)
     return counted(p, combined, size, op)
+
+
+UINT32 = 0xFFFFFFFF
+
+
+def _unsigned(op: str, signed: Callable[[Any, Any], Any]) -> Callable[[Any, Any], Any]:
+    """`op` on an unsigned left value as tshark 4.0.17 computes it: in 32 bits, no value where it overflows,
+    a negative right side (-slave, a signed number) read as its 32 bits (value + -slave: 0xfffffffe where
+    value is 0, no value from 2 up); a left value below 0 (value - 20 is signed there) as `signed`."""
+    def run(a: Any, b: Any) -> Any:
+        if a < 0:
+            return signed(a, b)
+        if b < 0:
+            b += UINT32 + 1
+            if op == "-":  # (b > a: tshark subtracts signed, and b is past 2^31)
+                return None
+        result = signed(a, b)
+        return None if result is not None and op in "+*" and result > UINT32 else result
+
+    return run
 
 
 def _operation(p: Any, op: Token, ftype: str, text: str) -> Callable[[Any, Any], Any]:
@@ -230,7 +254,9 @@ def negative(p: Any, op: Token, operand: Operand) -> Operand:
 
         return counted(p, Operand(text, op.position, fold=fold, tokens=operand.tokens), operand.size + 1, op)
     values = operand.values
-    negated = Operand(text, op.position, operand.ftype,  # (a number or a time: checked above)
+    # (a number or a time: checked above; an unsigned one becomes a signed 32-bit one, as tshark 4.0.17's)
+    ftype = "FT_INT32" if unsigned_type(operand.ftype) else operand.ftype
+    negated = Operand(text, op.position, ftype,
                       lambda item, reg: [-value for value in values(item, reg)], register=operand.register)
     return counted(p, negated, operand.size + 1, op)
 

@@ -33,6 +33,11 @@ FRAME_FIELDS: dict[str, str] = _group("frame") | {"raw": "bytes", "comment": "li
 # Numbers the time column shows, computed from the capture (FilterContext), as -T fields has them.
 TIME_FILTER_FIELDS: dict[str, str] = _group("time")
 REGISTER_FIELDS: dict[str, str] = _group("register")
+# A register's text keys: the plugin gives each register a frame carries every one of them, empty (a hidden
+# item) where the register has none, so that tshark -T fields lines them up; to tshark's -Y that empty
+# occurrence is a value (`vw3.reg.code == ""`, `vw3.reg.code == vw3.reg.name`), so -T fields and -Y read ""
+# there too (filter_match.register_value). Bits and the addresses a frame only names have none.
+REGISTER_TEXTS = frozenset(key for key, ftype in REGISTER_FIELDS.items() if ftype == "str")
 # Present only where true in the plugin (vw3.unanswered): where false, no occurrence in -T fields and
 # absent to -Y (`broadcast` alone and `broadcast == false` match no frame a plain request), as tshark has it.
 ONLY_TRUE = frozenset(entry["key"] for entry in CATALOGUE if entry.get("only_true"))

@@ -7,6 +7,7 @@ from typing import Any
 
 from dissector.devices.naming import plc_label
 from dissector.render.filter_error import FilterError
+from dissector.render.filter_fields import REGISTER_TEXTS
 from dissector.protocol import table
 
 Item = dict[str, Any]
@@ -22,6 +23,8 @@ def is_present(value: Any) -> bool:
 
 
 def compare(op: str, left: Any, right: Any) -> bool:
+    if isinstance(left, float) and left != left or isinstance(right, float) and right != right:
+        return op in ("==", "<=", ">=")  # (NaN, from 0 / 0: tshark 4.0.17 orders it as neither below nor above)
     try:
         if op == "==":
             return bool(left == right)
@@ -67,6 +70,16 @@ def match_op(op: str, actual: Any, value: Any) -> bool:
     return compare(op, actual, value)
 
 
+def relate(op: str, actual: Any, value: Any, unsigned: bool) -> bool | None:
+    """match_op, or None where tshark 4.0.17 cannot compare: an unsigned value (`unsigned`: the left side's
+    type, and the value not below 0) with a negative number (-slave is a signed one): no relation holds
+    then, none fails (value > -slave, value < -slave and value ~= -slave hold nowhere; value != -slave,
+    value === -slave and all value > -slave wherever value is)."""
+    if unsigned and is_number(value) and value < 0 and is_number(actual) and actual >= 0:
+        return None
+    return match_op(op, actual, value)
+
+
 def as_bytes(hex_text: Any) -> bytes | None:
     """The bytes of a value the item holds as hex text (raw, fields.data), None when it is none."""
     try:
@@ -106,7 +119,8 @@ def latin1(actual: Any) -> str | None:
 
 
 def contains_text(actual: Any, value: str) -> bool:
-    return isinstance(actual, str) and value in actual
+    """tshark 4.0.17: a text contains no empty text (`code contains ""` holds nowhere; `matches ""` everywhere)."""
+    return isinstance(actual, str) and value != "" and value in actual
 
 
 def in_members(actual: Any, members: list[tuple[Any, Any]]) -> bool:
@@ -137,6 +151,25 @@ def search(pattern: re.Pattern[str], actual: Any) -> bool:
 
 def label_number(label: Any) -> int | None:
     return int(label) if isinstance(label, str) and label.isdigit() else None
+
+
+def carried(item: Item, reg: dict[str, Any]) -> bool:
+    """Is `reg` one of the registers the item carries (not a bit, nor an address it only names)?"""
+    registers = item.get("registers")
+    if not registers or "value" not in reg:  # (an address only named has no value key: item_elements)
+        return False
+    return not item.get("bits") or any(element is reg for element in registers)
+
+
+def register_value(item: Item, reg: dict[str, Any] | None, field: str) -> Any:
+    """`field` of one register of the item as tshark reads the plugin's vw3.reg.FIELD: a text key the
+    register lacks is "" (filter_fields.REGISTER_TEXTS), None where there is no such occurrence."""
+    if reg is None:
+        return None
+    value = reg.get(field)
+    if value is None and field in REGISTER_TEXTS and carried(item, reg):
+        return ""
+    return value
 
 
 def address_values(reg: dict[str, Any] | None) -> tuple[Any, ...]:

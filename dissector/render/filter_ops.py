@@ -21,9 +21,11 @@ from dissector.render.filter_fields import (
 from dissector.render.filter_functions import call
 from dissector.render.filter_error import FilterError
 from dissector.render.filter_lexer import Token, tokenize
-from dissector.render.filter_match import as_bytes, compile_regex, in_members, item_elements, match_op, quantify
+from dissector.render.filter_match import (
+    as_bytes, compile_regex, in_members, item_elements, quantify, relate,
+)
 from dissector.render.filter_syntax import layer_holds_first, parse_layer
-from dissector.render.filter_values import kind_of, type_name
+from dissector.render.filter_values import kind_of, type_name, unsigned_type
 from dissector.render.glossary import field_type
 
 Item = dict[str, Any]
@@ -263,12 +265,13 @@ def _comparison(op: str, left: Operand, right: Operand, every: bool = False) -> 
     lefts, rights = left.values, right.values
     register = left.register or right.register
     wanted = {"~=": "!=", "!=": "==", "===": "!="}.get(op, op)
+    unsigned = unsigned_type(left.ftype)  # (value > -slave: no pair relates, filter_match.relate)
 
     def some(item: Item, reg: dict[str, Any] | None) -> bool:
         found = lefts(item, reg)
         if every and op not in ("!=", "==="):  # (a pair that fails op)
-            return bool(found) and any(not match_op(op, x, y) for y in rights(item, reg) for x in found)
-        return bool(found) and any(match_op(wanted, x, y) for y in rights(item, reg) for x in found)
+            return bool(found) and any(relate(op, x, y, unsigned) is False for y in rights(item, reg) for x in found)
+        return bool(found) and any(relate(wanted, x, y, unsigned) for y in rights(item, reg) for x in found)
 
     if op not in ("!=", "===") and not every:
         return some, register
@@ -300,6 +303,8 @@ def _search(p: Any, token: Any, left: Operand) -> tuple[Any, bool]:
     if p.token.kind not in ("string", "char", "bytes", "name", "number"):
         raise p.error(f"{word} takes a text or bytes, not {p._describe(p.token)}")
     wanted = typed(p, constant(p, p.advance()), left.ftype).values({}, None)[0]
+    if not wanted and (left.ftype == "FT_STRING" or left.field == "raw"):  # (as filter_match.contains_text)
+        return (lambda item, reg: False), left.register
     return (lambda item, reg: any(wanted in v for v in values(item, reg))), left.register
 
 
@@ -308,19 +313,37 @@ def parse_member(p: Any, field: str) -> Operand:
     """A set's member that is a field or a function's result (`value in {address, 40}`, `slave in
     {max(slave)}`), as tshark 4.0.17 takes one: one entity, no arithmetic (`{value + 1}` refused)."""
     token = p.token
-    operand = _parse_call(p) if p.tokens[p.index + 1].kind == "punct" and p.tokens[p.index + 1].value == "(" \
-        else _parse_field(p)
+    if p.at("op", "-", "+"):  # (-slave, +slave: one sign before a field, a function or a reference, as tshark's)
+        sign = p.advance()
+        if not (p.token.kind == "reference" or p.token.kind == "name" and (
+                is_field(p.token) or p.tokens[p.index + 1].kind == "punct" and p.tokens[p.index + 1].value == "(")):
+            raise p.unexpected(f"a sign in a set goes before a field or a function, as {sign.value}slave")
+        operand = negative(p, sign, parse_reference(p) if p.token.kind == "reference" else _parse_entity(p))
+    else:
+        operand = _parse_entity(p)
     if kind_of(operand.ftype) != kind_of(field_type(field)):
         raise p.error(f"{field} and {operand.text} are not of compatible types ({field_type(field)}, "
                       f"{operand.ftype}), as tshark says", token)
     return operand
 
 
-def set_test(get: Any, register: bool, members: list[tuple[Any, Any]], every: bool) -> Any:
+def is_negative(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and value < 0
+
+
+def _parse_entity(p: Any) -> Operand:
+    """A field or a function's result at p's token."""
+    if p.tokens[p.index + 1].kind == "punct" and p.tokens[p.index + 1].value == "(":
+        return _parse_call(p)
+    return _parse_field(p)
+
+
+def set_test(get: Any, register: bool, members: list[tuple[Any, Any]], every: bool, unsigned: bool = False) -> Any:
     """`field in {SET}` with a field among the members, as tshark 4.0.17: over every occurrence of the frame
     (each of the field's with each of a member's), some member holding (`all`: holding for every occurrence
     of the field, each member apart). A range's bound must have one value (none: the member holds nothing;
-    several: tshark 4.0.17 aborts, vw3-decode's member holds nothing)."""
+    several: tshark 4.0.17 aborts, vw3-decode's member holds nothing). An `unsigned` field relates to no
+    negative member (`value in {-slave}`, filter_match.relate): it holds nothing, and fails nothing under all."""
     def lefts(item: Item) -> list[Any]:
         elements = item_elements(item) if register else []
         return [v for element in elements or [None] if (v := get(item, element)) is not None and v != []]
@@ -333,11 +356,16 @@ def set_test(get: Any, register: bool, members: list[tuple[Any, Any]], every: bo
         if low is high and isinstance(low, Operand):  # a single member: each pair compared, as == and ===
             others = frame_values(low, item)
             if every:
-                return bool(values) and bool(others) and all(match_op("==", x, y) for x in values for y in others)
-            return any(match_op("==", x, y) for x in values for y in others)
+                return bool(values) and bool(others) and all(
+                    relate("==", x, y, unsigned) is not False for x in values for y in others)
+            return any(relate("==", x, y, unsigned) for x in values for y in others)
         lows, highs = bounds(low, item), bounds(high, item)
         if len(lows) != 1 or len(highs) != 1:
             return False
+        if unsigned and (is_negative(lows[0]) or is_negative(highs[0])):  # (value in {-slave..5})
+            if not every:
+                return False
+            lows, highs = [None if is_negative(lows[0]) else lows[0]], [None if is_negative(highs[0]) else highs[0]]
         inside = [in_members(x, [(lows[0], highs[0])]) for x in values]
         return bool(inside) and all(inside) if every else any(inside)
 

@@ -114,8 +114,8 @@ def _parse_bound(p: Any, field: str, ftype: str) -> Any:
     if p.token.kind == "reference":
         p.parse_reference()  # (a field, or refused as tshark refuses a macro)
         return REFERENCE
-    if p.token.kind == "name" and (p.is_field(p.token) or p.tokens[p.index + 1].text == "("):
-        return p.parse_member()  # (a field or a function: value in {address, 40}, filter_ops.set_test)
+    if p.token.kind == "name" and (p.is_field(p.token) or p.tokens[p.index + 1].text == "(") or p.at("op", "-", "+"):
+        return p.parse_member()  # (a field or a function, signed or not: value in {address, -slave}, filter_ops.set_test)
     value_token = p.token
     value = p.parse_value(field, ftype)
     p._check_choice(field, value, value_token)

@@ -79,6 +79,11 @@ def bool_literal(token: Any, text: str, field: str) -> bool:
     return value != 0
 
 
+def unsigned_type(ftype: str) -> bool:
+    """An unsigned integer type (FT_UINT16, a frame number), which tshark 4.0.17 compares with no negative number."""
+    return ftype.startswith("FT_UINT") or ftype == "FT_FRAMENUM"
+
+
 def negative_for_unsigned(field: str, value: Any) -> bool:
     """Is `value` a negative number for an unsigned field (slave > -1)? tshark 4.0.17 reads the - as an
     operation whose signed result compares with no unsigned value: ==, <, >, in, ~= never hold, while
@@ -87,4 +92,4 @@ def negative_for_unsigned(field: str, value: Any) -> bool:
 
     if not isinstance(value, (int, float)) or isinstance(value, bool) or value >= 0:
         return False
-    return field_type(field).startswith("FT_UINT") or field_type(field) == "FT_FRAMENUM"
+    return unsigned_type(field_type(field))

@@ -65,8 +65,11 @@ confirmation): `address == 8401` matches the read request, its response and writ
 address-only entries have no value, code or status. Where a profile shows PLC-style references
 (`40001`), `address` also takes the number shown: `address == 40001` matches the register sent as 0.
 
-A test on a field the item lacks (a noise item's slave, an unannotated register's code) is false, `!=` and
-`~=` included, as in Wireshark. A bare field tests presence, as in Wireshark 4.0: `crc_ok` is every frame
+A test on a field the item lacks (a noise item's slave, a request's value) is false, `!=` and `~=`
+included, as in Wireshark. A register's text keys (code, name, unit, text, status, source, label) are ""
+on a register that has none, as -T fields writes them and tshark reads the plugin's hidden empty items:
+`code == ""` finds the frames carrying an unnamed register, `code == name` one unnamed register (both
+empty), a bare `code` every frame carrying registers; `code matches "."` one named. A bare field tests presence, as in Wireshark 4.0: `crc_ok` is every frame
 whose check was made (a bad one too: `crc_ok == 1` is the good ones), `not crc_ok` noise and --hex frames
 typed without it; broadcast, unanswered and provisional exist only where true, as the plugin adds them. Errors raise FilterError, whose message shows the expression with a caret under the token.
 """
@@ -79,7 +82,8 @@ from typing import Any
 from dissector.render.filter_error import FilterError  # noqa: F401 (re-exported)
 from dissector.render.filter_fields import foreign_name
 from dissector.render.filter_fields import (  # noqa: F401 (re-exported: fields.py and -Y help use them)
-    ALIASES, _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, ONLY_TRUE, RECORD_KEYS, REGISTER_FIELDS, TIME_FILTER_FIELDS,
+    ALIASES, _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, ONLY_TRUE, RECORD_KEYS, REGISTER_FIELDS, REGISTER_TEXTS,
+    TIME_FILTER_FIELDS,
     field_listing,
     pdu_key_types, unknown_pdu_key, whole_number,
 )
@@ -100,6 +104,7 @@ from dissector.render.filter_match import (
     match_op,
     is_present,
     quantify,
+    register_value,
     search,
 )
 
@@ -109,7 +114,9 @@ from dissector.render.filter_ops import (
 )
 from dissector.render.filter_syntax import parse_layer, parse_set, parse_slice
 from dissector.render.filter_quantifiers import elements_pass, every_of, every_present, parse_quantified
-from dissector.render.filter_values import TIME_TYPES, bool_literal, kind_of, negative_for_unsigned, time_literal, type_name, uint_limit
+from dissector.render.filter_values import (
+    TIME_TYPES, bool_literal, kind_of, negative_for_unsigned, time_literal, type_name, uint_limit, unsigned_type,
+)
 from dissector.render.glossary import field_type
 from dissector.render.filter_lexer import NUMBER, Token, number, parse_bytes, tokenize  # noqa: F401
 
@@ -131,6 +138,7 @@ class _Parser:
         self.every = False  # inside `all RELATION`: every occurrence must pass (filter_quantifiers.py)
         self.member_of = ""  # the field of the set being parsed (its members: parse_member)
         self.presence: Test | None = None
+        self.protocol = False  # the field tested is raw as a whole: tshark's frame, a protocol
 
     @property
     def token(self) -> Token:
@@ -235,10 +243,12 @@ class _Parser:
         return self._parse_field_test(field, ftype, register)
 
     def _parse_field_test(self, field: str, ftype: str, register: bool) -> tuple[Test, bool]:
+        self.protocol = False
         if field.startswith("fields."):
             return self.parse_pdu_key_test(field, field[7:])
         cut = self.parse_slice(field, ftype)
         text_cut = cut is not None and ftype == "str"  # (a text's slice is bytes of its UTF-8, as tshark's)
+        self.protocol = field == "raw" and cut is None
         get = self.field_getter(field, ftype, register, cut)
         self.presence = every_present(get)  # (the occurrences `all` asks about: filter_quantifiers.py)
         return self.parse_operation(field, "bytes" if text_cut else ftype, get, register)
@@ -276,7 +286,7 @@ class _Parser:
 
         def get(item: Item, reg: dict[str, Any] | None) -> Any:
             if register:
-                value = None if reg is None else reg.get(field)
+                value = register_value(item, reg, field)
                 return value if not text_cut or not isinstance(value, str) else cut(value.encode())
             if field in TIME_FILTER_FIELDS:
                 return context.seconds(item, field)
@@ -368,12 +378,14 @@ class _Parser:
                 raise self.error(f"contains needs a text or bytes field; {field} is a {kind}", token)
             if ftype == "bytes":
                 data = self.parse_value(field, ftype)
+                if not data and self.protocol:  # (tshark's frame contains no empty bytes; its slice does)
+                    return (lambda item, reg: False), register
                 return (lambda item, reg: isinstance(got := get(item, reg), bytes) and data in got), register
             value = self.parse_value(field, "str")
             if ftype == "list":
                 every = self.every
                 return (lambda item, reg: elements_pass(every, get(item, reg),
-                                                        lambda v: isinstance(v, str) and value in v)), register
+                                                        lambda v: contains_text(v, value))), register
             return (lambda item, reg: contains_text(get(item, reg), value)), register
         if self.at("keyword", "in"):
             if ftype == "bytes":
@@ -383,7 +395,8 @@ class _Parser:
             self.member_of = field
             members = self.parse_set(field, ftype)
             if any(isinstance(bound, Operand) for member in members for bound in member):
-                return set_test(get, register, members, self.every), False  # (value in {address}, tshark's)
+                return set_test(get, register, members, self.every,  # (value in {address}, tshark's)
+                                unsigned_type(field_type(field))), False
             if field == "address":
                 def inside(item: Item, reg: dict[str, Any] | None, members: list[Any] = members) -> bool:
                     return any(in_members(v, members) for v in address_values(reg))
@@ -536,6 +549,8 @@ class _Parser:
 
     # -- messages -----------------------------------------------------------------------------
     def _check_choice(self, field: str, value: Any, token: Token) -> None:
+        if value == "" and field in REGISTER_TEXTS:
+            return  # (a register's empty text: the value of one without it, as tshark reads the plugin's)
         choices = CHOICES.get(field)
         if field == "code" and self.context.codes is not None:
             choices = tuple(sorted(self.context.codes))

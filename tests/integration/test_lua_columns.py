@@ -70,7 +70,7 @@ def python_rows(pcap: Path, *options: str, stdin: bool = False, first: bool = Fa
     rows = {}
     for line in run.stdout.decode().splitlines():
         cells = line.split("\t")
-        count = sum(len(json.loads(cell)) for cell in cells[1:3] if cell)  # the registers and bits it carries
+        count = len(json.loads(cells[1])) if cells[1] else 0  # the registers it carries (a bit has no text)
         values = {}
         for key, cell in zip(keys, cells[3:]):
             # (one register without the key prints an empty cell: one empty occurrence, not none)
@@ -94,15 +94,14 @@ def _split(cell: str) -> list[str]:
 def differences(plugin: dict[int, dict], python: dict[int, dict]) -> list[str]:
     out = []
     for record, row in plugin.items():
-        bits = len(row["bit.value"])  # (bit.address: and the named addresses of a coil function)
         expected: dict[str, list[str]] = {key: [] for key in ("address", *TEXT_KEYS, *NUMBER_KEYS)}
         for item in row["items"]:
             for key, values in python[item].items():
                 expected[key] += values
         # registers, then bits, as vw3-decode lists them (a bit has an address and a value, no text)
         shown = {"address": row["reg.address"] + row["bit.address"]}
-        for key in TEXT_KEYS:
-            shown[key] = row[f"reg.{key}"] + [""] * bits
+        for key in TEXT_KEYS:  # (none for a bit: tshark has no vw3.bit.code, and vw3-decode no empty one)
+            shown[key] = row[f"reg.{key}"]
         shown["value"] = row["reg.value"] + row["bit.value"]
         shown["scaled"] = [float(value) for value in row["reg.scaled"]]
         wanted = {key: expected[key] for key in TEXT_KEYS}

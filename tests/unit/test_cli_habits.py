@@ -35,7 +35,7 @@ def test_fields_csv_with_header_and_double_quotes() -> None:
     assert (status, err) == (0, "")
     assert out.splitlines() == [
         "frame,kind,response_time,code,value",  # the header is never quoted, as tshark
-        '"1","request","","",""',  # the read window: no code, no value (as tshark writes the plugin's)
+        '"1","request",,,',  # the read window: no code, no value, nothing quoted (as tshark writes the plugin's)
         '"2","response","0.010157000",",CHCF,COP","32768,3,2"',  # 8400 has no code: one occurrence each
     ]
 
@@ -105,8 +105,8 @@ def test_fields_lists_nested_keys_booleans_and_quotes_doubled() -> None:
          "-e", "notes", "-E", "quote=d", "-E", "occurrence=f", "-Y", "frame == 9 or frame == 10", P38]
     )
     lines = out.splitlines()
-    assert lines[0] == '"9"\t"1"\t"8400"\t""\t""'
-    assert lines[1].startswith('"10"\t"1"\t""\t"Illegal Data Address"\t"')
+    assert lines[0] == '"9"\t"1"\t"8400"\t\t'  # (no exception name, no note: nothing quoted, as tshark)
+    assert lines[1].startswith('"10"\t"1"\t\t"Illegal Data Address"\t"')
 
 
 def test_fields_quote_inside_a_value_is_doubled_as_a_spreadsheet_expects(tmp_path: Path) -> None:
