@@ -255,6 +255,21 @@ local DATA = {
         ["params"] = { "count", "header", "separator" },
         ["repr"] = {},
       },
+      ["not_utf8"] = {
+        ["format"] = "not UTF-8 text",
+        ["params"] = {},
+        ["repr"] = {},
+      },
+      ["utf16"] = {
+        ["format"] = "not UTF-8 text (UTF-16, as Excel's \"Unicode Text\" saves: save the map as \"CSV UTF-8\")",
+        ["params"] = {},
+        ["repr"] = {},
+      },
+      ["open_quote"] = {
+        ["format"] = "a quoted field is not closed on this line (a line break inside a cell? write each row on one line)",
+        ["params"] = {},
+        ["repr"] = {},
+      },
       ["address_twice"] = {
         ["format"] = "address %d already defined on line %d",
         ["params"] = { "address", "line" },
@@ -6806,16 +6821,17 @@ local line_read = ""
 local function wrong(key, values) refuse(line_read .. fill(MESSAGES[key], values, python_repr)) end
 
 -- One CSV line as Python's csv.reader (excel dialect) splits it: commas, "quoted" fields, "" for a quote;
--- a quote left open at the line's end closes there (the dialect is not strict).
+-- and whether a quote is left open at the line's end (maps.py refuses that line: open_quote).
 local function csv_cells(line, delimiter)
-  local cells, at, stop = {}, 1, 0
+  local cells, at, stop, open = {}, 1, 0, false
   repeat
     local cell = {}
     if line:sub(at, at) == '"' then
       -- quoted up to a quote that is not doubled (`""` stands for one); what follows it is the cell's too
       at = at + 1
       repeat
-        local quote = line:find('"', at, true) or #line + 1
+        local quote = line:find('"', at, true)
+        if not quote then open, quote = true, #line + 1 end
         cell[#cell + 1] = line:sub(at, quote - 1)
         local doubled = line:sub(quote + 1, quote + 1) == '"'
         if doubled then cell[#cell + 1] = '"' end
@@ -6827,7 +6843,7 @@ local function csv_cells(line, delimiter)
     cells[#cells + 1] = concat(cell)
     at = stop + 1
   until stop > #line
-  return cells
+  return cells, open
 end
 
 local function map_int(text)
@@ -6950,7 +6966,11 @@ end
 -- not UTF-8 are refused as maps.load_map_file refuses them (Python's strict decoder, no surrogateescape).
 local function read_map(text, origin)
   for char in (text:find("[\128-\255]") and text or ""):gmatch(UTF8_CHAR) do
-    if code_point(char) == nil then refuse(origin .. ": not UTF-8 text") end
+    if code_point(char) == nil then
+      local bom = text:sub(1, 2) -- (maps.py UTF16_BOMS: UTF-16's byte order marks, Excel's "Unicode Text")
+      local key = (bom == "\255\254" or bom == "\254\255") and "utf16" or "not_utf8"
+      refuse(origin .. ": " .. fill(MESSAGES[key], {}, python_repr))
+    end
   end
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
   local header, rows, first_line, order, delimiter, number = nil, {}, {}, {}, ",", 0
@@ -6964,7 +6984,8 @@ local function read_map(text, origin)
     local stripped = strip(line)
     if stripped ~= "" and stripped:sub(1, 1) ~= "#" then
       if header == nil then delimiter = sniff(line) end
-      local cells = csv_cells(line, delimiter)
+      local cells, open = csv_cells(line, delimiter)
+      if open then wrong("open_quote", {}) end
       if header == nil then
         header = {}
         local named, twice = {}, false -- (the columns named, and whether one is named twice: told last)

@@ -26,6 +26,8 @@ register. Lines starting with `#` are comments (the source legend lives there). 
 
 Maps come as spreadsheets save them: UTF-8 with or without a BOM, separated by `,` or, as European
 Excel writes CSV, `;` (or a tab), told from the header line (cells holding the separator are quoted).
+A row is one line: a quote left open at a line's end (a cell with a line break, saved over two lines) is
+refused by its line number.
 Only `address` and `code` are required in a user's map; the other columns may be left out of the header.
 Every malformed line is reported as `file:line: what is wrong`, never skipped.
 """
@@ -60,6 +62,7 @@ MEMO_LIMIT = 4096
 # 65,536 addresses of a few hundred bytes each at most: anything bigger is not a map, and reading
 # it whole (a 2 GB file given by mistake) would take the memory of the machine.
 MAX_MAP_BYTES = 16 << 20
+UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")  # the byte order marks of UTF-16 (little, big endian): MESSAGES utf16
 # Scales a device could mean (0.001 Hz .. GWh): any 16- or 32-bit raw value times one stays a finite
 # number with a bounded count of digits (1e308 times FFFF is inf; 1e-300 would print 300 decimals).
 SCALE_MIN, SCALE_MAX = 1e-12, 1e12
@@ -71,6 +74,13 @@ MESSAGES = {
     "missing_column": "the header lacks the {name!r} column",
     "column_twice": "a column is named twice in the header",
     "fields": "{count:d} fields, the header has {header:d} (quote a field that holds a {separator})",
+    # A spreadsheet's cell with a line break (Excel's Alt+Enter) is saved as a quoted field over two lines;
+    # a row is one line here, and a quote left open would silently take the rest of the line into a cell.
+    # (after `file: `; the file's bytes, not a line) Excel's "Unicode Text" saves UTF-16 with a UTF16_BOMS mark
+    "not_utf8": "not UTF-8 text",
+    "utf16": "not UTF-8 text (UTF-16, as Excel's \"Unicode Text\" saves: save the map as \"CSV UTF-8\")",
+    "open_quote": "a quoted field is not closed on this line (a line break inside a cell? write each row "
+                  "on one line)",
     "address_twice": "address {address:d} already defined on line {line:d}",
     "second_register": "address {address:d} is the second register of {code} ({kind}, line {line:d})",
     "no_header": "no header line (expected: " + ",".join(COLUMNS) + ")",
@@ -290,9 +300,13 @@ def _cells(line: str, delimiter: str) -> list[str]:
     limit (131,072 characters) refused a long name with csv's words, where the plugin took it."""
     limit = csv.field_size_limit(MAX_MAP_BYTES)
     try:
-        return next(csv.reader([line], delimiter=delimiter))
+        # (with the line's end given back: it is inside a cell only when a quote is left open)
+        cells = next(csv.reader([line + "\n"], delimiter=delimiter))
     finally:
         csv.field_size_limit(limit)
+    if cells and cells[-1].endswith("\n"):
+        raise ValueError(_say("open_quote"))
+    return cells
 
 
 def parse_map(text: str, origin: str) -> RegisterMap:
@@ -312,7 +326,7 @@ def parse_map(text: str, origin: str) -> RegisterMap:
             delimiter = _sniff(line)
         try:
             cells = _cells(line, delimiter)
-        except csv.Error as error:
+        except (csv.Error, ValueError) as error:
             raise ProfileError(f"{origin}:{number}: {error}") from None
         if header is None:
             header = [cell.strip(_SPACE).translate(_LOWER) for cell in cells]
@@ -385,7 +399,7 @@ def load_map_file(path: str | Path) -> RegisterMap:
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError:
-        raise ProfileError(f"{path}: not UTF-8 text") from None
+        raise ProfileError(f"{path}: " + _say("utf16" if data[:2] in UTF16_BOMS else "not_utf8")) from None
     # read_text() turned CR LF into LF; splitlines() in parse_map treats both alike.
     return parse_map(text, str(path))
 

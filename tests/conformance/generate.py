@@ -261,6 +261,8 @@ MAP_TEXTS = {
                      "1=\ue000;2=\U0001f600;3=\u0378\U000e0001\U0010ffff,s\U0001f600\n2,U,,\ufeffkm,,\n",
     "unicode in a message": "address,code,access\n1,A,\u202e\u3000\ufeff\ue000\U0001f600\u0378'\n",
     "quote left open": "address,code,name\n1,A,\"open, still\n",
+    # (a cell with a line break, Excel's Alt+Enter, saved quoted over two lines: refused at its first line)
+    "quote left open by a line break": "address,code,name,unit\n1,A,\"two\nlines\",Hz\n",
     "address": "address,code\nx1,A\n",
     "address range": "address,code\n70000,A\n",
     # (a number is decimal or 0x/16# hexadecimal in both readers: not int()'s 1_0, 16#0x10, Unicode digits)
@@ -317,6 +319,9 @@ MAP_TEXTS = {
 # Map files whose bytes are not UTF-8 (load_map_file's strict decode, no surrogateescape: refused).
 MAP_BYTES = {
     "not utf-8 latin-1": b"address,code,name\n1,A,caf\xe9\n",
+    # (Excel's "Unicode Text": UTF-16 with its byte order mark, tab separated; the message says what to save)
+    "utf-16 little endian": "address\tcode\n1\tA\n".encode("utf-16-le").join([b"\xff\xfe", b""]),
+    "utf-16 big endian": "address\tcode\n1\tA\n".encode("utf-16-be").join([b"\xfe\xff", b""]),
     "not utf-8 stray continuation": b"address,code\n1,\x80\n",
     "not utf-8 overlong": b"address,code\n1,\xc0\xaf\n",
     "not utf-8 surrogate": b"address,code\n1,\xed\xa0\x80\n",

@@ -130,9 +130,10 @@ def test_wide_rows_on_a_device_with_16_8000(tmp_path: Path) -> None:
     ("1,A,int64,\n", "map.csv:2: type 'int64' is not one of uint16, int16, uint32, int32, float32"),
     ("1,A,uint32,BADC\n", "map.csv:2: order 'BADC' is not ABCD or CDAB"),
     ("65535,A,float32,\n", "map.csv:2: a float32 value needs two registers: 65535 is the last address"),
-    # (a cell in Python's repr, quotes as Python picks them; a quote left open takes the rest of the line)
+    # (a cell in Python's repr, quotes as Python picks them; a quote left open: test_map_spreadsheet_saves)
     ("x1,A,,\n", "map.csv:2: address 'x1' is not a number"),
-    ('1,"A,uint32,\n', "map.csv:2: 2 fields, the header has 4 (quote a field that holds a comma)"),
+    ('1,"A,uint32,\n', "map.csv:2: a quoted field is not closed on this line (a line break inside a cell? "
+                      "write each row on one line)"),
 ])
 def test_wide_row_errors_are_shown_as_vw3_decode_says_them(tmp_path: Path, rows: str, message: str) -> None:
     bad = tmp_path / "map.csv"
