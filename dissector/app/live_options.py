@@ -55,6 +55,25 @@ def positive_seconds(text: str) -> float:
     return value
 
 
+class Autostop(argparse.Action):
+    """tshark's and dumpcap's `-a duration:S` and `-a packets:N`: what --duration and -c say (given twice, the
+    later wins, as with those). Their other conditions (filesize, files) are refused by name, never ignored."""
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
+                 values: object, option_string: str | None = None) -> None:
+        name, _, value = str(values).partition(":")
+        try:
+            if name == "duration":
+                namespace.duration = positive_seconds(value)
+            elif name == "packets":
+                namespace.count = positive_int(value)
+            else:
+                raise argparse.ArgumentTypeError(f"{str(values)!r}: stops are duration:S and packets:N "
+                                                 "(a -w ring buffer's size is -b filesize:KB,files:N)")
+        except argparse.ArgumentTypeError as error:
+            raise argparse.ArgumentError(self, str(error)) from None
+
+
 # --timeout's range: the texts say it in whole milliseconds (`the 1000 ms timeout`), as the plugin's timeout
 # preference takes it; an answer a day after its request answers nothing (1e300 made --stats' margin column
 # a 300-digit number, 1e-300 said "the 0 ms timeout").
@@ -89,6 +108,8 @@ def add_live_arguments(parser: argparse.ArgumentParser) -> None:
     )
     group.add_argument("--raw", metavar="FILE", help="also write every byte heard to FILE, as heard")
     group.add_argument("--duration", type=positive_seconds, metavar="SECONDS", help="stop after SECONDS")
+    group.add_argument("-a", action=Autostop, metavar="duration:S|packets:N",
+                       help="stop live as tshark -a does: after S seconds (--duration), after N items (-c)")
     group.add_argument(
         "-c", "--count", type=positive_int, metavar="N",
         help="stop after N items, frames and noise runs alike, each a packet (live, or shown from files: after -Y, where tshark -c counts the packets read)",

@@ -338,7 +338,7 @@ def _refuse_conflicts(args: argparse.Namespace) -> None:
         (args.stats and args.output_format == "registers", "--stats replaces the items: -T registers shows none"),
         (len(args.filter) > 1, "-Y given twice: combine the filters with and / or in one -Y"),
         (args.raw is not None, "--raw (write the bytes heard) needs --live PORT"),
-        (args.duration is not None, "--duration needs --live PORT"),
+        (args.duration is not None, "--duration (-a duration:S) needs --live PORT"),
         (bool(getattr(args, "port_format", ())),
          f"{', '.join(getattr(args, 'port_format', ()))}: the serial port's frame format needs --live PORT "
          "(a file's line is --baud's, its characters the mode's: 11 bits RTU, 10 ASCII)"),
