@@ -10,9 +10,9 @@ import json
 
 import pytest
 
-from helpers import rtu, run_cli, stats_section, use_engine
+from helpers import rtu, stats_section, use_engine
 
-from test_stats_late_choice_stream import MIN, _min_cut_after
+from test_stats_late_choice_stream import MIN, _min_cut_after, _stats
 
 CUT = _min_cut_after(10)  # (after #10, before the FC43 answer that chooses)
 READ_8501 = rtu("0c0321350001")
@@ -31,17 +31,6 @@ ROWS = {
     "value-unknown": "   12      8501  CMD       2           0       1        0  Switch on, Enable voltage, Enable operation        1",
 }
 VECTORS = {"value-known": KNOWN, "value-unknown": UNKNOWN}
-
-
-def _stats(data: bytes, read: str, tmp_path, *options: str) -> str:
-    if read == "stdin":
-        status, out, err = run_cli(["--stats", *options, "-"], data)
-    else:
-        path = tmp_path / "capture.bin"
-        path.write_bytes(data)
-        status, out, err = run_cli(["--stats", *options, str(path)])
-    assert status == 0, err
-    return out
 
 
 @pytest.mark.parametrize("pure", [False, True], ids=["engine", "python"])
