@@ -7,6 +7,7 @@ Python decoder numbers items of one byte stream.
 from __future__ import annotations
 
 import json
+import fcntl
 import os
 import re
 import struct
@@ -45,10 +46,14 @@ def ensure_tool(command: str, package: str) -> str:
     if os.geteuid() != 0:
         pytest.fail(f"{command} is missing and we are not root to install {package}")
     env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
-    for args in (["apt-get", "update"], ["apt-get", "install", "-y", package]):
-        result = subprocess.run(args, capture_output=True, text=True, env=env, timeout=900)
-        if result.returncode != 0:
-            pytest.fail(f"{' '.join(args)} failed: {result.stderr[-2000:]}")
+    # (one install at a time: the README's command runs two pytest-xdist workers; the lock the serial tests' flock takes)
+    with open("/tmp/apt.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if shutil.which(command) is None:
+            for args in (["apt-get", "update"], ["apt-get", "install", "-y", package]):
+                result = subprocess.run(args, capture_output=True, text=True, env=env, timeout=900)
+                if result.returncode != 0:
+                    pytest.fail(f"{' '.join(args)} failed: {result.stderr[-2000:]}")
     path = shutil.which(command)
     if path is None:
         pytest.fail(f"{package} installed but {command} is still not on PATH")
