@@ -184,14 +184,15 @@ def test_stats_report_watch_and_fields_say_what_the_json_says(tmp_path: Path) ->
             assert [(int(event[0]), event[2]) for event in listed] == protections, path
 
         # -T fields: one row per item, as tshark writes the plugin's: a text key one occurrence per register
-        # (empty where it has none), a number key only the values there are
+        # (empty where it has none; a bit none: the plugin has no bit texts), a number key only the values there are
         status, out, _ = run_cli([path, "-T", "fields", "-e", "frame", "-e", "slave", "-e", "address",
                                   "-e", "value", "-e", "status", "-E", "separator=;", *options])
 
         def join(record: dict, key: str) -> str:
-            elements = (record.get("registers") or []) + (record.get("bits") or [])
-            cells = ["" if element.get(key) is None else str(element[key]) for element in elements
-                     if element.get(key) is not None or key == "status"]
+            registers = record.get("registers") or []
+            elements = registers + (record.get("bits") or [])
+            cells = ["" if element.get(key) is None else str(element[key]) for index, element in enumerate(elements)
+                     if element.get(key) is not None or key == "status" and index < len(registers)]
             start, quantity = record.get("start"), record.get("quantity")
             if start is not None and quantity is not None and record["kind"] != "exception":
                 # then the addresses the frame names without carrying them (a read request's window, README),
