@@ -24,7 +24,9 @@ for path in (ROOT, TESTS / "support"):
 SHARED = ROOT.parent / "shared"
 MARKED_FOLDERS = ("unit", "differential", "integration")
 # What in a test file's text makes it `serial` (a new test of a live bus is serial without being listed).
-SERIAL = re.compile(r"openpty|\bpty\.|live_bus|Sniffer|\"--live\"|loop://|uart_sim|extcap_harness|chromium|flock|apt-get")
+# A file that measures CPU time against a peer says so itself: `pytestmark = pytest.mark.serial`.
+SERIAL = re.compile(r"openpty|\bpty\.|live_bus|Sniffer|\"--live\"|loop://|uart_sim|extcap_harness|chromium|flock|apt-get"
+                    r"|pytest\.mark\.serial")
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:

@@ -16,6 +16,9 @@ from dissector.sim.simulate import generate_session
 from helpers import rtu
 from lua_harness import PLUGIN, ROOT, USER_DLT, ensure_tool, lua_errors, run_tshark, write_pcap
 
+# (its floods' CPU time is held against the normal capture's: measured with the machine to itself, tests/conftest.py)
+pytestmark = pytest.mark.serial
+
 ESC = "\x1b"
 VENDOR = b"\x1b]8;;http://x\x1b\\LINK\x1b[2J\x07"
 
@@ -155,7 +158,9 @@ def _within_bounds(name: str, flood: Path, normal: Cost) -> None:
     print(f"\n{name}: plugin {plugin}; tshark alone {own}; the plugin on the normal capture {normal}: "
           f"memory {plugin.peak / own.peak:.2f}x tshark's own, time {plugin.seconds / normal.seconds:.2f}x")
     assert plugin.peak < 2 * own.peak, (name, str(plugin), str(own))
-    assert plugin.seconds < 5 * normal.seconds, (name, str(plugin), str(normal))
+    # (a flood costs 4.9x the normal capture alone on this machine at 98bfa55 and now; the defects this bounds
+    # took 7-30x: 20-34 s for 1 MB of ':', 40-80 s of CRC scans)
+    assert plugin.seconds < 6 * normal.seconds, (name, str(plugin), str(normal))
 
 
 def _flood(path: Path, data: bytes, start: float = 1767225600.0, first: tuple[bytes, float] | None = None) -> Path:

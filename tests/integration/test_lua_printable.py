@@ -25,12 +25,13 @@ from unicode_edges import boundaries
 REPR = """local vw3 = dofile(arg[1])
 io.stdout:write(package.loaded["vw3.env"].python_repr(io.stdin:read("*a")))"""
 
-# (one map text a line, as hex: 1 when the plugin reads it as UTF-8, 0 when it says `m: not UTF-8 text`)
+# (one map text a line, as hex: 1 when the plugin reads it as UTF-8, 0 when it says `m: not UTF-8 text`, alone
+# or with why: a UTF-16 byte order mark first, maps.py's utf16 message)
 DECODES = """local vw3 = dofile(arg[1])
 for line in io.stdin:lines() do
   local text = line:gsub("%x%x", function(hex) return string.char(tonumber(hex, 16)) end)
   local _, problem = package.loaded["vw3.env"].parse_map(text, "m")
-  io.stdout:write(problem == "m: not UTF-8 text" and "0" or "1")
+  io.stdout:write(problem ~= nil and problem:find("^m: not UTF%-8 text") and "0" or "1")
 end"""
 
 EDGES = [0x00, 0x41, 0x7F, 0x80, 0x8F, 0x90, 0x9F, 0xA0, 0xBF, 0xC0, 0xC1, 0xC2, 0xDF, 0xE0, 0xE1, 0xEC, 0xED,
