@@ -87,6 +87,14 @@ def remember_answered(frame: Frame, device: Device) -> None:
         remember_writes(frame, device, request.registers)
 
 
+def masked_value(current: int | None, and_mask: int, or_mask: int) -> int | None:
+    """What a Mask Write leaves in a register that held `current` (None: not known): (current AND and_mask)
+    OR (or_mask AND NOT and_mask), Application Protocol 6.16; known without `current` when and_mask is 0."""
+    if and_mask == 0:
+        current = 0
+    return None if current is None else (current & and_mask) | (or_mask & ~and_mask & 0xFFFF)
+
+
 def remember_mask(frame: Frame, device: Device, masked: dict[int, int | None] | None = None) -> None:
     """A Mask Write its echo confirms (data/modbus.toml [confirm] "mask"): the register holds (current AND
     and_mask) OR (or_mask AND NOT and_mask) (Application Protocol 6.16), written as FC6's value is; where
@@ -101,8 +109,7 @@ def remember_mask(frame: Frame, device: Device, masked: dict[int, int | None] | 
     seen = device.memory(frame.function)
     address, and_mask = fields.address, fields.and_mask
     last = seen.get(address)
-    current = 0 if and_mask == 0 else last[0] if last is not None else None
-    value = None if current is None else (current & and_mask) | (fields.or_mask & ~and_mask & 0xFFFF)
+    value = masked_value(last[0] if last is not None else None, and_mask, fields.or_mask)
     if value is None:
         seen.pop(address, None)
     else:

@@ -79,6 +79,7 @@ from collections.abc import Callable
 from typing import Any, Protocol
 
 from dissector.devices.maps import interpret_wide
+from dissector.devices.memory import masked_value
 from dissector.devices.profiles import device_tables, load_profile_map
 from dissector.model import Frame, Item, Kind, Register
 from dissector.protocol.rules import Confirm, confirmed_by
@@ -378,11 +379,9 @@ class History:
             masked = self._masked
             known = masked.get(frame.number, value) if provisional else masked.pop(frame.number, value)
             memory = self._replayed
-            if memory is not None and not provisional:  # (memory.remember_mask's reckoning)
+            if memory is not None and not provisional:  # (as memory.remember_mask reckons it)
                 key = (self.tables(frame.slave)[frame.function], fields.address)
-                current = 0 if fields.and_mask == 0 else memory.get(key)
-                known = None if current is None else (
-                    (current & fields.and_mask) | (fields.or_mask & ~fields.and_mask & 0xFFFF))
+                known = masked_value(memory.get(key), fields.and_mask, fields.or_mask)
             if known is not None:
                 self._events(frame, [self._named(frame, fields.address, known)], CONFIRM, confirmed=True,
                              provisional=provisional)
