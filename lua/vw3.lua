@@ -434,6 +434,11 @@ local DATA = {
         ["params"] = { "code", "address", "line" },
         ["repr"] = {},
       },
+      ["references"] = {
+        ["format"] = "map %s: %d registers slave %d reads or writes are in no map, but %d of them are in this one at address + %s: its addresses look like PLC references, where a map takes protocol addresses (reference - %s)",
+        ["params"] = { "map", "unnamed", "slave", "shifted", "offset", "offset" },
+        ["repr"] = {},
+      },
     },
   },
   ["nonprintable"] = {

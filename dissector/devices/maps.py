@@ -111,6 +111,11 @@ MESSAGES = {
     "enum_bits": "a register cannot carry both enum and bit labels",
     "labels_quantity": "a register with {what} labels cannot carry a {column} (its value is a label)",
     "code_twice": "code {code} already names address {address:d} (line {line:d})",
+    # Not a line's error: what the traffic tells of a map written in PLC references (maps_refs.py, the
+    # plugin's device.lua), a frame's note and a warning. {offset}: `40001`, or `40001 or 30001` (FC4's 3X).
+    "references": "map {map}: {unnamed:d} registers slave {slave:d} reads or writes are in no map, but "
+                  "{shifted:d} of them are in this one at address + {offset}: its addresses look like PLC "
+                  "references, where a map takes protocol addresses (reference - {offset})",
 }
 
 
