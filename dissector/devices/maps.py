@@ -113,9 +113,10 @@ MESSAGES = {
     "code_twice": "code {code} already names address {address:d} (line {line:d})",
     # Not a line's error: what the traffic tells of a map written in PLC references (maps_refs.py, the
     # plugin's device.lua), a frame's note and a warning. {offset}: `40001`, or `40001 or 30001` (FC4's 3X).
-    "references": "map {map}: {unnamed:d} registers slave {slave:d} reads or writes are in no map, but "
-                  "{shifted:d} of them are in this one at address + {offset}: its addresses look like PLC "
-                  "references, where a map takes protocol addresses (reference - {offset})",
+    # (short: Wireshark cuts an expert info's text at 240 bytes)
+    "references": "map {map} names {shifted:d} of the {unnamed:d} unnamed registers slave {slave:d} reads or "
+                  "writes at address + {offset}: PLC references? A map takes protocol addresses (reference - "
+                  "{offset})",
 }
 
 

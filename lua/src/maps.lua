@@ -390,7 +390,11 @@ local function parse_map_choice(text, profile_names)
       if rows == nil then
         errors[#errors + 1] = problem
       else
-        layers[#layers + 1] = { rows = rows, slave = slave, profile = not slave and target or nil }
+        -- (name, high: the reference check's, device.lua reference_check: the file as given, its highest address)
+        local high = -1
+        for address in pairs(rows) do high = math.max(high, address) end
+        layers[#layers + 1] = { rows = rows, slave = slave, profile = not slave and target or nil,
+          name = printable(path), high = high }
       end
     end
   end
