@@ -434,9 +434,26 @@ local DATA = {
         ["params"] = { "code", "address", "line" },
         ["repr"] = {},
       },
+      ["reference_and_address"] = {
+        ["format"] = "a map gives each row an address or a reference, not both",
+        ["params"] = {},
+        ["repr"] = {},
+      },
+      ["reference"] = {
+        ["format"] = "reference %s is not a 4X or 3X register reference (40001..49999, 400001..465536; 30001..39999, 300001..365536)",
+        ["params"] = { "text" },
+        ["repr"] = {
+          ["text"] = true,
+        },
+      },
       ["references"] = {
-        ["format"] = "map %s names %d of the %d unnamed registers slave %d reads or writes at address + %s: PLC references? A map takes protocol addresses (reference - %s)",
-        ["params"] = { "map", "shifted", "unnamed", "slave", "offset", "offset" },
+        ["format"] = "map %s names %d of the %d unnamed registers slave %d reads or writes at address + %s: PLC references? A map takes protocol addresses (reference - %s)%s",
+        ["params"] = { "map", "shifted", "unnamed", "slave", "offset", "offset", "column" },
+        ["repr"] = {},
+      },
+      ["references_column"] = {
+        ["format"] = " or a reference column",
+        ["params"] = {},
         ["repr"] = {},
       },
     },
@@ -6694,7 +6711,7 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, LIMITS, MAX_SLAVE, concat, error, fill, floor = DATA, LIMITS, MAX_SLAVE, concat, error, fill, floor
 local format, io, ipairs, math, next, pairs, pcall, select = format, io, ipairs, math, next, pairs, pcall, select
-local string, tonumber, tostring, type = string, tonumber, tostring, type
+local setmetatable, string, tonumber, tostring, type = setmetatable, string, tonumber, tostring, type
 
 
 -- ---------------------------------------------------------------------------------------------------
@@ -6858,6 +6875,23 @@ local function map_int(text)
   return text:match("^[+-]?%d+$") and tonumber(text) or nil
 end
 
+-- maps.reference_address: the address a PLC reference stands for (40001 -> 0, 30101 -> 100, 400001 -> 0),
+-- decimal digits only; FORMAT.reference_bases: 4X, 3X (five digits, or six: base * 10 - 9).
+local REFERENCE, REFERENCE_BASES = FORMAT.reference, FORMAT.reference_bases
+local function map_reference(text)
+  text = strip(text)
+  local number = text:match("^%d+$") and tonumber(text)
+  for _, base in ipairs(number and REFERENCE_BASES or {}) do
+    if number >= base and number <= base + 9998 then return number - base end
+    local six = base * 10 - 9
+    if number >= six and number <= six + 0xFFFF then return number - six end
+  end
+  wrong("reference", { text = text })
+end
+
+-- The rows read from a map written in PLC references (maps.ReferenceRows), for the reference check's note.
+local reference_rows = setmetatable({}, { __mode = "k" })
+
 local function map_pairs(text, what)
   local out, low, high = {}, PAIRS[what][1], PAIRS[what][2]
   for part in (text .. ";"):gmatch("([^;]*);") do
@@ -6996,11 +7030,17 @@ local function read_map(text, origin)
         local named, twice = {}, false -- (the columns named, and whether one is named twice: told last)
         for index, cell in ipairs(cells) do
           local name = strip(cell):lower()
-          if not KNOWN_COLUMN[name] then wrong("unknown_column", { name = name }) end
+          if not KNOWN_COLUMN[name] and name ~= REFERENCE then wrong("unknown_column", { name = name }) end
           header[index], named[name], twice = name, true, twice or named[name] ~= nil
         end
+        if named[REFERENCE] then
+          if named.address then wrong("reference_and_address") end
+          reference_rows[rows] = true
+        end
         for _, required in ipairs(FORMAT.required) do
-          if not named[required] then wrong("missing_column", { name = required }) end
+          if not named[required] and not (required == "address" and named[REFERENCE]) then
+            wrong("missing_column", { name = required })
+          end
         end
         if twice then wrong("column_twice") end
       else
@@ -7013,6 +7053,7 @@ local function read_map(text, origin)
         if delimiter ~= "," and values.scale ~= nil and strip(values.scale):match("^[-+]?%d+,%d+$") then
           values.scale = values.scale:gsub(",", ".") -- `0,1`: the decimal comma of the same spreadsheets
         end
+        if values[REFERENCE] ~= nil then values.address = format("%d", map_reference(values[REFERENCE])) end
         local address, row = map_row(values)
         if rows[address] ~= nil then wrong("address_twice", { address = address, line = first_line[address] }) end
         local first = named[row.code:upper()]
@@ -7086,7 +7127,7 @@ local function parse_map_choice(text, profile_names)
         local high = -1
         for address in pairs(rows) do high = math.max(high, address) end
         layers[#layers + 1] = { rows = rows, slave = slave, profile = not slave and target or nil,
-          name = printable(path), high = high }
+          name = printable(path), high = high, references = reference_rows[rows] == true }
       end
     end
   end
@@ -7227,8 +7268,10 @@ local function reference_note(judged, slave)
   local offsets = {}
   for _, offset in pairs(judged.shifted[best]) do offsets[offset] = true end
   local offset = offsets_text(offsets)
+  -- (the references themselves, not one less, in a map without a `reference` column: that column reads them)
+  local column = (best == 1 and not judged.layer.references) and fill(MESSAGES.references_column, {}) or ""
   return fill(MESSAGES.references, { map = judged.layer.name, unnamed = counts.unnamed, slave = slave,
-    shifted = counts[best], offset = offset }, python_repr)
+    shifted = counts[best], offset = offset, column = column }, python_repr)
 end
 
 -- A frame annotated by take_frame: counted while the slave's device judges (maps_refs.ReferenceCheck.observe),

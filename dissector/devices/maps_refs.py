@@ -16,7 +16,7 @@ from typing import Sequence
 
 from dissector.devices.annotator import Annotator, MapLayer
 from dissector.devices.device import Device
-from dissector.devices.maps import MESSAGES, RegisterMap
+from dissector.devices.maps import MESSAGES, ReferenceRows, RegisterMap
 from dissector.model import Frame, RegisterList
 from dissector.protocol.printable import printable
 
@@ -51,15 +51,18 @@ def offsets_text(offsets: Sequence[int]) -> str:
     return " or ".join(str(offset) for offset in sorted(set(offsets), reverse=True))
 
 
-def reference_note(path: str, slave: int, tally: _Tally) -> str | None:
-    """The note when the tally says the layer's addresses look like references, else None."""
+def reference_note(path: str, slave: int, tally: _Tally, rows: RegisterMap) -> str | None:
+    """The note when the tally says the layer's addresses look like references, else None. Where they are
+    the references themselves (not one less) and the map has no `reference` column, it says that column
+    would read them as they are."""
     best = max(VARIANTS, key=lambda variant: (len(tally.shifted[variant]), -variant))
     shifted = tally.shifted[best]
     if not shifted or len(shifted) <= len(tally.own):
         return None
+    column = MESSAGES["references_column"] if best == 0 and not isinstance(rows, ReferenceRows) else ""
     return MESSAGES["references"].format(
         map=printable(path), unnamed=len(tally.unnamed), slave=slave, shifted=len(shifted),
-        offset=offsets_text(list(shifted.values())),
+        offset=offsets_text(list(shifted.values())), column=column,
     )
 
 
@@ -125,7 +128,7 @@ class ReferenceCheck:
                         offset = base - variant
                         if address + offset <= 0xFFFF and names(mine, address + offset):
                             tally.shifted[variant][seen] = offset
-            note = reference_note(path, slave, tally)
+            note = reference_note(path, slave, tally, mine)
             if note is not None:
                 frame.notes.append(note)
                 self.said.append(note)

@@ -119,8 +119,10 @@ local function reference_note(judged, slave)
   local offsets = {}
   for _, offset in pairs(judged.shifted[best]) do offsets[offset] = true end
   local offset = offsets_text(offsets)
+  -- (the references themselves, not one less, in a map without a `reference` column: that column reads them)
+  local column = (best == 1 and not judged.layer.references) and fill(MESSAGES.references_column, {}) or ""
   return fill(MESSAGES.references, { map = judged.layer.name, unnamed = counts.unnamed, slave = slave,
-    shifted = counts[best], offset = offset }, python_repr)
+    shifted = counts[best], offset = offset, column = column }, python_repr)
 end
 
 -- A frame annotated by take_frame: counted while the slave's device judges (maps_refs.ReferenceCheck.observe),

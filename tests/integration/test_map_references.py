@@ -25,9 +25,12 @@ REQUEST = "     1            -   1 request   Read Holding Registers 0..3 (4)  CR
 ANSWER = "     2            -   1 response  Read Holding Registers 0..3 (4): "
 
 
-def note(path: Path, unnamed: int, shifted: int, offset: str, slave: int = 1) -> str:
+COLUMN = " or a reference column"  # (where the rows are the references themselves, in a map without that column)
+
+
+def note(path: Path, unnamed: int, shifted: int, offset: str, slave: int = 1, column: str = COLUMN) -> str:
     return (f"map {path} names {shifted} of the {unnamed} unnamed registers slave {slave} reads or writes at "
-            f"address + {offset}: PLC references? A map takes protocol addresses (reference - {offset})")
+            f"address + {offset}: PLC references? A map takes protocol addresses (reference - {offset}){column}")
 
 
 def _map(tmp_path: Path, rows: str, name: str = "m.csv") -> Path:
@@ -84,7 +87,7 @@ def test_the_off_by_one_variant_and_fc4_s_3x_references(tmp_path: Path, monkeypa
     capture = write_rtu(tmp_path / "r.bin", READ + ["01 04 0064 0002", "01 04 04 00FA 00FD"])
     path = _map(tmp_path, "40000,IA,Phase A current,A\n40001,IB,Phase B current,A\n")  # (40000 for register 0)
     status, out, err = run_cli([str(capture), "--profile", "generic", "--map", str(path)])
-    assert out.splitlines()[1] == ANSWER + f"0=403 1=440 2=476 3=514 [#1] [{note(path, 4, 2, '40000')}]  CRC ok"
+    assert out.splitlines()[1] == ANSWER + f"0=403 1=440 2=476 3=514 [#1] [{note(path, 4, 2, '40000', column='')}]  CRC ok"
     inputs = _map(tmp_path, "30101,T1,Temperature 1,degC\n30102,T2,Temperature 2,degC\n", "i.csv")
     status, out, err = run_cli([str(capture), "--profile", "generic", "--map", str(inputs)])
     assert out.splitlines()[1:] == [
@@ -115,3 +118,49 @@ def test_a_register_named_by_the_built_in_map_is_not_counted(tmp_path: Path) -> 
     status, out, err = run_cli([str(capture), "--profile", "atv71", "--map", str(path)])
     assert (status, err) == (0, "")
     assert "[map " not in out
+
+
+@pytest.mark.parametrize("pure", [False, True], ids=["engine", "pure"])
+def test_a_reference_column_reads_the_manual_s_numbers(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                      pure: bool) -> None:
+    """A map headed `reference` instead of `address` is written as manuals number registers: 4X 40001 is
+    address 0 (six digits: 400001), 3X 30101 input register 100; the traffic names its rows, no note."""
+    use_engine(monkeypatch, pure)
+    capture = write_rtu(tmp_path / "r.bin", READ + ["01 04 0064 0002", "01 04 04 00FA 00FD"])
+    path = tmp_path / "m.csv"
+    path.write_text("reference,code,name,unit\n40001,IA,Phase A current,A\n400002,IB,Phase B current,A\n"
+                    "30101,T1,Temperature 1,degC\n")
+    status, out, err = run_cli([str(capture), "--profile", "generic", "--map", str(path)])
+    assert (status, out.splitlines()[1::2], err) == (0, [
+        ANSWER + "IA=403 A IB=440 A 2=476 3=514 [#1]  CRC ok",
+        "     4            -   1 response  Read Input Registers 100..101 (2): T1=250 degC 101=253 [#3]  CRC ok"], "")
+
+
+def test_a_reference_map_still_off_is_told_without_the_column_hint(tmp_path: Path) -> None:
+    # (440002 is address 40001: references of references; the note does not offer the column it has)
+    capture = write_rtu(tmp_path / "r.bin", READ)
+    path = tmp_path / "m.csv"
+    path.write_text("reference,code\n440002,IA\n")
+    status, out, _err = run_cli([str(capture), "--profile", "generic", "--map", str(path)])
+    assert out.splitlines()[1] == ANSWER + f"0=403 1=440 2=476 3=514 [#1] [{note(path, 4, 1, '40001', column='')}]  CRC ok"
+
+
+BAD_REFERENCES = {
+    "reference,address,code\n": "map.csv:1: a map gives each row an address or a reference, not both",
+    "reference,code\n40000,A\n": "map.csv:2: reference '40000' is not a 4X or 3X register reference "
+                                  "(40001..49999, 400001..465536; 30001..39999, 300001..365536)",
+    "reference,code\n0x9C41,A\n": "map.csv:2: reference '0x9C41' is not a 4X or 3X register reference "
+                                   "(40001..49999, 400001..465536; 30001..39999, 300001..365536)",
+    "reference,code\n465537,A\n": "map.csv:2: reference '465537' is not a 4X or 3X register reference "
+                                   "(40001..49999, 400001..465536; 30001..39999, 300001..365536)",
+    "reference,code\n40001,A\n400001,B\n": "map.csv:3: address 0 already defined on line 2",
+    "name,code\n": "map.csv:1: the header lacks the 'address' column",
+}
+
+
+@pytest.mark.parametrize("text", list(BAD_REFERENCES), ids=range(len(BAD_REFERENCES)))
+def test_a_bad_reference_is_one_line(tmp_path: Path, text: str) -> None:
+    (tmp_path / "map.csv").write_text(text)
+    capture = write_rtu(tmp_path / "r.bin", READ)
+    status, out, err = run_cli([str(capture), "--map", str(tmp_path / "map.csv")])
+    assert (status, out, err) == (2, "", f"vw3-decode: {tmp_path}/{BAD_REFERENCES[text]}\n")
