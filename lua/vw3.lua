@@ -7101,7 +7101,7 @@ local function load_map(path)
   return read_map(text or "", path)
 end
 
--- "FILE;3=FILE;sel749m=FILE" -> layers { rows, slave, profile } in order, and errors.
+-- "FILE;3=FILE;sel749m=FILE" -> layers { rows, slave, profile, name, high, references } in order, and errors.
 local function parse_map_choice(text, profile_names)
   local layers, errors = {}, {}
   for spec in (text or ""):gmatch("[^;]+") do

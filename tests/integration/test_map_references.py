@@ -4,7 +4,9 @@ the traffic tells it (devices/maps_refs.py): where a slave reads or writes regis
 map names more of them at address + the PLC base of their function (40001, FC4 30001; or one less) than
 at their address, the deciding frame gets a note, once per map and slave. A map whose addresses really
 are 40000 and up (SunSpec) read there, a correct map, and a map that matches the traffic at no offset get
-none. Exact bytes, exact texts, the compiled engine and VW3_PURE_PYTHON=1 alike."""
+none. A map may say it is written in references: a `reference` column in place of `address` (40001 is
+address 0; 3X 30001; six digits 400001), its bad cells refused in one line. Exact bytes, exact texts, the
+compiled engine and VW3_PURE_PYTHON=1 alike."""
 from __future__ import annotations
 
 import json
