@@ -434,6 +434,28 @@ local DATA = {
         ["params"] = { "code", "address", "line" },
         ["repr"] = {},
       },
+      ["reference_and_address"] = {
+        ["format"] = "a map gives each row an address or a reference, not both",
+        ["params"] = {},
+        ["repr"] = {},
+      },
+      ["reference"] = {
+        ["format"] = "reference %s is not a 4X or 3X register reference (40001..49999, 400001..465536; 30001..39999, 300001..365536)",
+        ["params"] = { "text" },
+        ["repr"] = {
+          ["text"] = true,
+        },
+      },
+      ["references"] = {
+        ["format"] = "map %s names %d of the %d unnamed registers slave %d reads or writes at address + %s: PLC references? A map takes protocol addresses (reference - %s)%s",
+        ["params"] = { "map", "shifted", "unnamed", "slave", "offset", "offset", "column" },
+        ["repr"] = {},
+      },
+      ["references_column"] = {
+        ["format"] = " or a reference column",
+        ["params"] = {},
+        ["repr"] = {},
+      },
     },
   },
   ["nonprintable"] = {
@@ -6688,8 +6710,8 @@ package.preload["vw3.maps"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, LIMITS, MAX_SLAVE, concat, error, fill, floor = DATA, LIMITS, MAX_SLAVE, concat, error, fill, floor
-local format, io, ipairs, math, next, pcall, select, string = format, io, ipairs, math, next, pcall, select, string
-local tonumber, tostring, type = tonumber, tostring, type
+local format, io, ipairs, math, next, pairs, pcall, select = format, io, ipairs, math, next, pairs, pcall, select
+local setmetatable, string, tonumber, tostring, type = setmetatable, string, tonumber, tostring, type
 
 
 -- ---------------------------------------------------------------------------------------------------
@@ -6853,6 +6875,23 @@ local function map_int(text)
   return text:match("^[+-]?%d+$") and tonumber(text) or nil
 end
 
+-- maps.reference_address: the address a PLC reference stands for (40001 -> 0, 30101 -> 100, 400001 -> 0),
+-- decimal digits only; FORMAT.reference_bases: 4X, 3X (five digits, or six: base * 10 - 9).
+local REFERENCE, REFERENCE_BASES = FORMAT.reference, FORMAT.reference_bases
+local function map_reference(text)
+  text = strip(text)
+  local number = text:match("^%d+$") and tonumber(text)
+  for _, base in ipairs(number and REFERENCE_BASES or {}) do
+    if number >= base and number <= base + 9998 then return number - base end
+    local six = base * 10 - 9
+    if number >= six and number <= six + 0xFFFF then return number - six end
+  end
+  wrong("reference", { text = text })
+end
+
+-- The rows read from a map written in PLC references (maps.ReferenceRows), for the reference check's note.
+local reference_rows = setmetatable({}, { __mode = "k" })
+
 local function map_pairs(text, what)
   local out, low, high = {}, PAIRS[what][1], PAIRS[what][2]
   for part in (text .. ";"):gmatch("([^;]*);") do
@@ -6991,11 +7030,17 @@ local function read_map(text, origin)
         local named, twice = {}, false -- (the columns named, and whether one is named twice: told last)
         for index, cell in ipairs(cells) do
           local name = strip(cell):lower()
-          if not KNOWN_COLUMN[name] then wrong("unknown_column", { name = name }) end
+          if not KNOWN_COLUMN[name] and name ~= REFERENCE then wrong("unknown_column", { name = name }) end
           header[index], named[name], twice = name, true, twice or named[name] ~= nil
         end
+        if named[REFERENCE] then
+          if named.address then wrong("reference_and_address") end
+          reference_rows[rows] = true
+        end
         for _, required in ipairs(FORMAT.required) do
-          if not named[required] then wrong("missing_column", { name = required }) end
+          if not named[required] and not (required == "address" and named[REFERENCE]) then
+            wrong("missing_column", { name = required })
+          end
         end
         if twice then wrong("column_twice") end
       else
@@ -7008,6 +7053,7 @@ local function read_map(text, origin)
         if delimiter ~= "," and values.scale ~= nil and strip(values.scale):match("^[-+]?%d+,%d+$") then
           values.scale = values.scale:gsub(",", ".") -- `0,1`: the decimal comma of the same spreadsheets
         end
+        if values[REFERENCE] ~= nil then values.address = format("%d", map_reference(values[REFERENCE])) end
         local address, row = map_row(values)
         if rows[address] ~= nil then wrong("address_twice", { address = address, line = first_line[address] }) end
         local first = named[row.code:upper()]
@@ -7055,7 +7101,7 @@ local function load_map(path)
   return read_map(text or "", path)
 end
 
--- "FILE;3=FILE;sel749m=FILE" -> layers { rows, slave, profile } in order, and errors.
+-- "FILE;3=FILE;sel749m=FILE" -> layers { rows, slave, profile, name, high, references } in order, and errors.
 local function parse_map_choice(text, profile_names)
   local layers, errors = {}, {}
   for spec in (text or ""):gmatch("[^;]+") do
@@ -7077,7 +7123,11 @@ local function parse_map_choice(text, profile_names)
       if rows == nil then
         errors[#errors + 1] = problem
       else
-        layers[#layers + 1] = { rows = rows, slave = slave, profile = not slave and target or nil }
+        -- (name, high: the reference check's, device.lua reference_check: the file as given, its highest address)
+        local high = -1
+        for address in pairs(rows) do high = math.max(high, address) end
+        layers[#layers + 1] = { rows = rows, slave = slave, profile = not slave and target or nil,
+          name = printable(path), high = high, references = reference_rows[rows] == true }
       end
     end
   end
@@ -7086,9 +7136,9 @@ end
 
 -- (for the conformance runner, which reads map texts: the modules read files, load_map)
 M.parse_map = parse_map
-M.AUTO, M.PLAIN_READS, M.PROFILES, M.READS, M.READ_LIMIT = AUTO, PLAIN_READS, PROFILES, READS, READ_LIMIT
-M.SELECTION, M.parse_map_choice, M.parse_profile_choice = SELECTION, parse_map_choice, parse_profile_choice
-M.python_repr = python_repr
+M.AUTO, M.MESSAGES, M.PLAIN_READS, M.PROFILES, M.READS = AUTO, MESSAGES, PLAIN_READS, PROFILES, READS
+M.READ_LIMIT, M.SELECTION, M.parse_map_choice = READ_LIMIT, SELECTION, parse_map_choice
+M.parse_profile_choice, M.python_repr = parse_profile_choice, python_repr
 end
 
 -- ---- vw3.device: lua/src/device.lua ----
@@ -7098,9 +7148,10 @@ package.preload["vw3.device"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.device"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local AUTO, DATA, NO_INTERPRETATION, PROFILES, SELECTION = AUTO, DATA, NO_INTERPRETATION, PROFILES, SELECTION
-local concat, floor, format, ipairs, made_once, math, next = concat, floor, format, ipairs, made_once, math, next
-local pairs, say, tonumber = pairs, say, tonumber
+local AUTO, DATA, MESSAGES, NO_INTERPRETATION, PROFILES = AUTO, DATA, MESSAGES, NO_INTERPRETATION, PROFILES
+local SELECTION, concat, fill, floor, format, ipairs = SELECTION, concat, fill, floor, format, ipairs
+local made_once, math, next, note, pairs, python_repr, say = made_once, math, next, note, pairs, python_repr, say
+local table, tonumber, verified = table, tonumber, verified
 
 -- naming.plc_label: `40001 + address` up to 49999, then 6-digit references (`400001 + address`); coil
 -- references keep their zeros (00001). PLC_LABELS[base][address], each label made once (at most 65,536
@@ -7171,6 +7222,101 @@ local function layered_rows(profile, applies)
   return rows
 end
 
+-- A map written in PLC references (maps_refs.py, message for message): judged on a slave's first
+-- REFERENCES_JUDGED frames with registers; the layers that apply to the slave and could name a register at
+-- a reference base past its address (FC3's or FC4's base, or one less), nil when none does.
+local REFERENCES_JUDGED = 32
+local function reference_base(profile, fn) return (profile.plc_base or {})[fn] or profile.plc_base_default end
+
+local function reference_check(profile, slave)
+  local low = math.min(reference_base(profile, 3), reference_base(profile, 4)) - 1
+  local layers = {}
+  for index, layer in ipairs(config.layers) do
+    if layer.high >= low and (layer.slave == nil or layer.slave == slave)
+        and (layer.profile == nil or layer.profile == profile.name) then
+      layers[#layers + 1] = { layer = layer, index = index, own = {}, unnamed = {}, shifted = { {}, {} }, counts = {
+        own = 0, unnamed = 0, 0, 0 } }
+    end
+  end
+  if #layers == 0 then return nil end
+  return { frames = 0, layers = layers, left = #layers }
+end
+
+-- maps_refs.names: a map names this register, a row of its own or a 32-bit row's second word.
+local function map_names(rows, address)
+  if rows[address] ~= nil then return true end
+  local before = rows[address - 1]
+  return before ~= nil and before.words == 2
+end
+
+-- maps_refs.offsets_text: `40001`, `40001 or 30001`.
+local function offsets_text(offsets)
+  local list = {}
+  for offset in pairs(offsets) do list[#list + 1] = offset end
+  table.sort(list, function(a, b) return a > b end)
+  local texts = {}
+  for index, offset in ipairs(list) do texts[index] = format("%d", offset) end
+  return concat(texts, " or ")
+end
+
+-- maps_refs.reference_note: the variant (the base itself, 1; one less, 2) naming most registers no map
+-- names, when it names more of them than the layer names at their own address.
+local function reference_note(judged, slave)
+  local counts = judged.counts
+  local best = counts[2] > counts[1] and 2 or 1
+  if counts[best] == 0 or counts[best] <= counts.own then return nil end
+  local offsets = {}
+  for _, offset in pairs(judged.shifted[best]) do offsets[offset] = true end
+  local offset = offsets_text(offsets)
+  -- (the references themselves, not one less, in a map without a `reference` column: that column reads them)
+  local column = (best == 1 and not judged.layer.references) and fill(MESSAGES.references_column, {}) or ""
+  return fill(MESSAGES.references, { map = judged.layer.name, unnamed = counts.unnamed, slave = slave,
+    shifted = counts[best], offset = offset, column = column }, python_repr)
+end
+
+-- A frame annotated by take_frame: counted while the slave's device judges (maps_refs.ReferenceCheck.observe),
+-- the deciding frame noted. Distinct registers by (reference base, address), as the Python check counts them.
+local function check_references(f, device)
+  local refs = device and device.refs
+  local registers = f.registers
+  if refs == nil or not device.refs_open or registers == nil or registers.count == 0 or f.slave == 0
+      or f.provisional or not verified(f) then
+    return
+  end
+  refs.frames = refs.frames + 1
+  if refs.frames >= REFERENCES_JUDGED then device.refs_open = false end
+  local base = reference_base(device.profile, f.fn)
+  local rows, start = device.rows, registers.start
+  for _, judged in ipairs(refs.layers) do
+    if not judged.done and start ~= nil then
+      local mine, counts = judged.layer.rows, judged.counts
+      for index = 0, registers.count - 1 do
+        local address = (start + index) % 0x10000
+        local key = base * 65536 + address
+        if map_names(mine, address) then
+          if not judged.own[key] then judged.own[key], counts.own = true, counts.own + 1 end
+        elseif not map_names(rows, address) then
+          if not judged.unnamed[key] then judged.unnamed[key], counts.unnamed = true, counts.unnamed + 1 end
+          for variant = 1, 2 do
+            local offset = base - variant + 1
+            local shifted = judged.shifted[variant]
+            if address + offset <= 0xFFFF and shifted[key] == nil and map_names(mine, address + offset) then
+              shifted[key], counts[variant] = offset, counts[variant] + 1
+            end
+          end
+        end
+      end
+      local note = reference_note(judged, f.slave)
+      if note ~= nil then
+        local notes = f.notes
+        if notes == nil then f.notes = { note } else notes[#notes + 1] = note end
+        judged.done, refs.left = true, refs.left - 1
+        if refs.left == 0 then device.refs_open = false end
+      end
+    end
+  end
+end
+
 -- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own
 -- parameter memory (a new profile for a slave starts a new memory, as the annotator builds a new Device).
 local function build_device(profile, slave)
@@ -7198,6 +7344,8 @@ local function build_device(profile, slave)
   for _, row in pairs(rows) do
     if row.read_only then device.read_only = true break end
   end
+  device.refs = reference_check(profile, slave)
+  device.refs_open = device.refs ~= nil -- (the quick lanes leave its frames to take_frame while it judges)
   return device
 end
 

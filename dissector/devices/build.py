@@ -7,6 +7,7 @@ from pathlib import Path
 from dissector.devices.annotator import Annotator, MapLayer
 from dissector.devices.maps import load_map_file, overlay
 from dissector.devices.maps import RegisterMap
+from dissector.devices.maps_refs import CheckedAnnotator
 from dissector.devices.profiles import (
     ADDRESS_STYLES, AUTO, BUILTIN_PROFILES, DEFAULT_PROFILE, FALLBACK_PROFILE, Profile, load_profile,
     load_profile_map,
@@ -84,11 +85,13 @@ def build_annotator(
     if selector is not None:
         names |= {profile.name for profile in auto_candidates}
     layers: list[MapLayer] = []
+    paths: list[str] = []  # each layer's file, as given (maps_refs names it)
     for spec in maps:
         target, path = _split_target(spec, "--map")
         if target is not None and Path(spec).exists():
             target, path = None, spec  # a file whose name holds '=' is a file, not a target
         rows = load_map_file(path)
+        paths.append(path)
         if target is None:
             layers.append(MapLayer(rows))
         elif target.isdigit():
@@ -108,4 +111,6 @@ def build_annotator(
                 if layer.profile == profile.name:
                     rows = overlay(rows, layer.rows)
             selector.candidates.append((profile, rows))
+    if layers:  # (a map written in PLC references is told from the traffic: maps_refs.py)
+        return CheckedAnnotator(default, per_slave, layers, address_style, selector, paths=paths)
     return Annotator(default, per_slave, layers, address_style, selector)

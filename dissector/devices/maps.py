@@ -4,7 +4,9 @@ Format (the plugin's map reader, lua/src/maps.lua, reads COLUMNS, TYPES, ORDERS,
 from the data codegen writes into lua/vw3.lua): a header line naming the columns, then one row per
 register. Lines starting with `#` are comments (the source legend lives there). Columns:
 
-    address  logic address as sent on the wire (decimal, or 0x/16# hexadecimal)
+    address  logic address as sent on the wire (decimal, or 0x/16# hexadecimal); or, a map written as
+             manuals number registers, a `reference` column in its place: PLC references, 4X (40001 for
+             address 0, to 49999; six digits 400001..465536) or 3X (30001, 300001: input registers)
     code     short code shown to users (CHCF); one register's (ASCII case aside, as --watch matches codes)
     name     long name ([Profile])
     unit     unit of the scaled value (Hz)
@@ -57,6 +59,11 @@ SIGNED_TYPES = frozenset(["int16", "int32"])
 PAIRS = {"enum": (0, 0xFFFF), "bits": (0, 15)}  # the numbers an enum or bits entry may label
 SEPARATORS = (",", ";", "\t")  # a map's separator: the one of these that splits its header most
 REQUIRED = ("address", "code")
+# The column a map written in PLC references has in place of `address`, and the references' bases: 4X
+# (holding registers) and 3X (input registers), five digits (40001 + address up to 49999) or six (400001 +
+# address: naming.plc_label's rule, base * 10 - 9). A map names addresses whatever the table, as before.
+REFERENCE = "reference"
+REFERENCE_BASES = (40001, 30001)
 ACCESS = frozenset(["R", "W", "RW"])
 MEMO_LIMIT = 4096
 # 65,536 addresses of a few hundred bytes each at most: anything bigger is not a map, and reading
@@ -111,6 +118,17 @@ MESSAGES = {
     "enum_bits": "a register cannot carry both enum and bit labels",
     "labels_quantity": "a register with {what} labels cannot carry a {column} (its value is a label)",
     "code_twice": "code {code} already names address {address:d} (line {line:d})",
+    "reference_and_address": f"a map gives each row an address or a {REFERENCE}, not both",
+    "reference": "reference {text!r} is not a 4X or 3X register reference (" + "; ".join(
+        f"{base}..{base + 9998}, {base * 10 - 9}..{base * 10 - 9 + 0xFFFF}" for base in REFERENCE_BASES) + ")",
+    # Not a line's error: what the traffic tells of a map written in PLC references (maps_refs.py, the
+    # plugin's device.lua), a frame's note and a warning. {offset}: `40001`, or `40001 or 30001` (FC4's 3X).
+    # (short: Wireshark cuts an expert info's text at 240 bytes)
+    "references": "map {map} names {shifted:d} of the {unnamed:d} unnamed registers slave {slave:d} reads or "
+                  "writes at address + {offset}: PLC references? A map takes protocol addresses (reference - "
+                  "{offset}){column}",
+    # ({column} of references: where the map's rows are the references themselves, not one less)
+    "references_column": f" or a {REFERENCE} column",
 }
 
 
@@ -169,6 +187,23 @@ def _parse_int(text: str) -> int:
         if text.startswith(prefix) and digits and _HEX_DIGITS.issuperset(digits):
             return int(digits, 16)
     raise ValueError(text)
+
+
+def reference_address(text: str) -> int:
+    """The address a PLC reference stands for (40001 -> 0, 30101 -> 100, 400001 -> 0), as the plugin reads
+    it (maps.lua map_reference): decimal digits only."""
+    text = text.strip(_SPACE)
+    if text.isascii() and text.isdecimal():
+        number = int(text)
+        for base in REFERENCE_BASES:
+            for first, last in ((base, base + 9998), (base * 10 - 9, base * 10 - 9 + 0xFFFF)):
+                if first <= number <= last:
+                    return number - first
+    raise ValueError(_say("reference", text=text))
+
+
+class ReferenceRows(dict):  # type: ignore[type-arg]
+    """The rows of a map written in PLC references (its `reference` column): a RegisterMap by address."""
 
 
 def _pairs(text: str, what: str, low: int, high: int) -> dict[int, str]:
@@ -330,10 +365,15 @@ def parse_map(text: str, origin: str) -> RegisterMap:
             raise ProfileError(f"{origin}:{number}: {error}") from None
         if header is None:
             header = [cell.strip(_SPACE).translate(_LOWER) for cell in cells]
-            unknown = [name for name in header if name not in COLUMNS]
+            unknown = [name for name in header if name not in COLUMNS and name != REFERENCE]
             if unknown:
                 raise ProfileError(f"{origin}:{number}: " + _say("unknown_column", name=unknown[0]))
-            missing = [name for name in REQUIRED if name not in header]
+            if REFERENCE in header:
+                if "address" in header:
+                    raise ProfileError(f"{origin}:{number}: " + _say("reference_and_address"))
+                rows = ReferenceRows()
+            missing = [name for name in REQUIRED if name not in header and not (
+                name == "address" and REFERENCE in header)]
             if missing:
                 raise ProfileError(f"{origin}:{number}: " + _say("missing_column", name=missing[0]))
             if len(set(header)) != len(header):
@@ -349,6 +389,8 @@ def parse_map(text: str, origin: str) -> RegisterMap:
         if delimiter != "," and _DECIMAL_COMMA.fullmatch(scale.strip(_SPACE)):
             values["scale"] = scale.replace(",", ".")  # `0,1`: the decimal comma of the same spreadsheets
         try:
+            if REFERENCE in values:
+                values["address"] = str(reference_address(values.pop(REFERENCE)))
             row = _row(values)
         except ValueError as error:
             raise ProfileError(f"{origin}:{number}: {error}") from None

@@ -73,6 +73,101 @@ local function layered_rows(profile, applies)
   return rows
 end
 
+-- A map written in PLC references (maps_refs.py, message for message): judged on a slave's first
+-- REFERENCES_JUDGED frames with registers; the layers that apply to the slave and could name a register at
+-- a reference base past its address (FC3's or FC4's base, or one less), nil when none does.
+local REFERENCES_JUDGED = 32
+local function reference_base(profile, fn) return (profile.plc_base or {})[fn] or profile.plc_base_default end
+
+local function reference_check(profile, slave)
+  local low = math.min(reference_base(profile, 3), reference_base(profile, 4)) - 1
+  local layers = {}
+  for index, layer in ipairs(config.layers) do
+    if layer.high >= low and (layer.slave == nil or layer.slave == slave)
+        and (layer.profile == nil or layer.profile == profile.name) then
+      layers[#layers + 1] = { layer = layer, index = index, own = {}, unnamed = {}, shifted = { {}, {} }, counts = {
+        own = 0, unnamed = 0, 0, 0 } }
+    end
+  end
+  if #layers == 0 then return nil end
+  return { frames = 0, layers = layers, left = #layers }
+end
+
+-- maps_refs.names: a map names this register, a row of its own or a 32-bit row's second word.
+local function map_names(rows, address)
+  if rows[address] ~= nil then return true end
+  local before = rows[address - 1]
+  return before ~= nil and before.words == 2
+end
+
+-- maps_refs.offsets_text: `40001`, `40001 or 30001`.
+local function offsets_text(offsets)
+  local list = {}
+  for offset in pairs(offsets) do list[#list + 1] = offset end
+  table.sort(list, function(a, b) return a > b end)
+  local texts = {}
+  for index, offset in ipairs(list) do texts[index] = format("%d", offset) end
+  return concat(texts, " or ")
+end
+
+-- maps_refs.reference_note: the variant (the base itself, 1; one less, 2) naming most registers no map
+-- names, when it names more of them than the layer names at their own address.
+local function reference_note(judged, slave)
+  local counts = judged.counts
+  local best = counts[2] > counts[1] and 2 or 1
+  if counts[best] == 0 or counts[best] <= counts.own then return nil end
+  local offsets = {}
+  for _, offset in pairs(judged.shifted[best]) do offsets[offset] = true end
+  local offset = offsets_text(offsets)
+  -- (the references themselves, not one less, in a map without a `reference` column: that column reads them)
+  local column = (best == 1 and not judged.layer.references) and fill(MESSAGES.references_column, {}) or ""
+  return fill(MESSAGES.references, { map = judged.layer.name, unnamed = counts.unnamed, slave = slave,
+    shifted = counts[best], offset = offset, column = column }, python_repr)
+end
+
+-- A frame annotated by take_frame: counted while the slave's device judges (maps_refs.ReferenceCheck.observe),
+-- the deciding frame noted. Distinct registers by (reference base, address), as the Python check counts them.
+local function check_references(f, device)
+  local refs = device and device.refs
+  local registers = f.registers
+  if refs == nil or not device.refs_open or registers == nil or registers.count == 0 or f.slave == 0
+      or f.provisional or not verified(f) then
+    return
+  end
+  refs.frames = refs.frames + 1
+  if refs.frames >= REFERENCES_JUDGED then device.refs_open = false end
+  local base = reference_base(device.profile, f.fn)
+  local rows, start = device.rows, registers.start
+  for _, judged in ipairs(refs.layers) do
+    if not judged.done and start ~= nil then
+      local mine, counts = judged.layer.rows, judged.counts
+      for index = 0, registers.count - 1 do
+        local address = (start + index) % 0x10000
+        local key = base * 65536 + address
+        if map_names(mine, address) then
+          if not judged.own[key] then judged.own[key], counts.own = true, counts.own + 1 end
+        elseif not map_names(rows, address) then
+          if not judged.unnamed[key] then judged.unnamed[key], counts.unnamed = true, counts.unnamed + 1 end
+          for variant = 1, 2 do
+            local offset = base - variant + 1
+            local shifted = judged.shifted[variant]
+            if address + offset <= 0xFFFF and shifted[key] == nil and map_names(mine, address + offset) then
+              shifted[key], counts[variant] = offset, counts[variant] + 1
+            end
+          end
+        end
+      end
+      local note = reference_note(judged, f.slave)
+      if note ~= nil then
+        local notes = f.notes
+        if notes == nil then f.notes = { note } else notes[#notes + 1] = note end
+        judged.done, refs.left = true, refs.left - 1
+        if refs.left == 0 then device.refs_open = false end
+      end
+    end
+  end
+end
+
 -- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own
 -- parameter memory (a new profile for a slave starts a new memory, as the annotator builds a new Device).
 local function build_device(profile, slave)
@@ -100,6 +195,8 @@ local function build_device(profile, slave)
   for _, row in pairs(rows) do
     if row.read_only then device.read_only = true break end
   end
+  device.refs = reference_check(profile, slave)
+  device.refs_open = device.refs ~= nil -- (the quick lanes leave its frames to take_frame while it judges)
   return device
 end
 

@@ -166,6 +166,23 @@ local function map_int(text)
   return text:match("^[+-]?%d+$") and tonumber(text) or nil
 end
 
+-- maps.reference_address: the address a PLC reference stands for (40001 -> 0, 30101 -> 100, 400001 -> 0),
+-- decimal digits only; FORMAT.reference_bases: 4X, 3X (five digits, or six: base * 10 - 9).
+local REFERENCE, REFERENCE_BASES = FORMAT.reference, FORMAT.reference_bases
+local function map_reference(text)
+  text = strip(text)
+  local number = text:match("^%d+$") and tonumber(text)
+  for _, base in ipairs(number and REFERENCE_BASES or {}) do
+    if number >= base and number <= base + 9998 then return number - base end
+    local six = base * 10 - 9
+    if number >= six and number <= six + 0xFFFF then return number - six end
+  end
+  wrong("reference", { text = text })
+end
+
+-- The rows read from a map written in PLC references (maps.ReferenceRows), for the reference check's note.
+local reference_rows = setmetatable({}, { __mode = "k" })
+
 local function map_pairs(text, what)
   local out, low, high = {}, PAIRS[what][1], PAIRS[what][2]
   for part in (text .. ";"):gmatch("([^;]*);") do
@@ -304,11 +321,17 @@ local function read_map(text, origin)
         local named, twice = {}, false -- (the columns named, and whether one is named twice: told last)
         for index, cell in ipairs(cells) do
           local name = strip(cell):lower()
-          if not KNOWN_COLUMN[name] then wrong("unknown_column", { name = name }) end
+          if not KNOWN_COLUMN[name] and name ~= REFERENCE then wrong("unknown_column", { name = name }) end
           header[index], named[name], twice = name, true, twice or named[name] ~= nil
         end
+        if named[REFERENCE] then
+          if named.address then wrong("reference_and_address") end
+          reference_rows[rows] = true
+        end
         for _, required in ipairs(FORMAT.required) do
-          if not named[required] then wrong("missing_column", { name = required }) end
+          if not named[required] and not (required == "address" and named[REFERENCE]) then
+            wrong("missing_column", { name = required })
+          end
         end
         if twice then wrong("column_twice") end
       else
@@ -321,6 +344,7 @@ local function read_map(text, origin)
         if delimiter ~= "," and values.scale ~= nil and strip(values.scale):match("^[-+]?%d+,%d+$") then
           values.scale = values.scale:gsub(",", ".") -- `0,1`: the decimal comma of the same spreadsheets
         end
+        if values[REFERENCE] ~= nil then values.address = format("%d", map_reference(values[REFERENCE])) end
         local address, row = map_row(values)
         if rows[address] ~= nil then wrong("address_twice", { address = address, line = first_line[address] }) end
         local first = named[row.code:upper()]
@@ -368,7 +392,7 @@ local function load_map(path)
   return read_map(text or "", path)
 end
 
--- "FILE;3=FILE;sel749m=FILE" -> layers { rows, slave, profile } in order, and errors.
+-- "FILE;3=FILE;sel749m=FILE" -> layers { rows, slave, profile, name, high, references } in order, and errors.
 local function parse_map_choice(text, profile_names)
   local layers, errors = {}, {}
   for spec in (text or ""):gmatch("[^;]+") do
@@ -390,7 +414,11 @@ local function parse_map_choice(text, profile_names)
       if rows == nil then
         errors[#errors + 1] = problem
       else
-        layers[#layers + 1] = { rows = rows, slave = slave, profile = not slave and target or nil }
+        -- (name, high: the reference check's, device.lua reference_check: the file as given, its highest address)
+        local high = -1
+        for address in pairs(rows) do high = math.max(high, address) end
+        layers[#layers + 1] = { rows = rows, slave = slave, profile = not slave and target or nil,
+          name = printable(path), high = high, references = reference_rows[rows] == true }
       end
     end
   end
