@@ -199,6 +199,8 @@ local DATA = {
       ["unit"] = true,
     },
     ["required"] = { "address", "code" },
+    ["reference"] = "reference",
+    ["reference_bases"] = { 40001, 30001 },
     ["max_bytes"] = 16777216,
     ["scale_min"] = 1e-12,
     ["scale_max"] = 1000000000000.0,
@@ -7123,7 +7125,7 @@ local function parse_map_choice(text, profile_names)
       if rows == nil then
         errors[#errors + 1] = problem
       else
-        -- (name, high: the reference check's, device.lua reference_check: the file as given, its highest address)
+        -- (name, high: what check_references in lua/src/device.lua reads: the file as given, its highest address)
         local high = -1
         for address in pairs(rows) do high = math.max(high, address) end
         layers[#layers + 1] = { rows = rows, slave = slave, profile = not slave and target or nil,
@@ -7479,9 +7481,9 @@ local function interpret_wide(row, first, second)
   return value, text
 end
 M.PLC_LABELS, M.address_name, M.address_runs, M.build_device = PLC_LABELS, address_name, address_runs, build_device
-M.consecutive, M.copied, M.device_for, M.device_of = consecutive, copied, device_for, device_of
-M.has_note, M.interpret, M.interpret_wide, M.layered_rows = has_note, interpret, interpret_wide, layered_rows
-M.span_name = span_name
+M.check_references, M.consecutive, M.copied, M.device_for = check_references, consecutive, copied, device_for
+M.device_of, M.has_note, M.interpret, M.interpret_wide = device_of, has_note, interpret, interpret_wide
+M.layered_rows, M.span_name = layered_rows, span_name
 end
 
 -- ---- vw3.story: lua/src/story.lua ----
@@ -8684,13 +8686,14 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local CONFIRMED, DATA, ECHO_CODES, FRAMING, KIND_NUMBER = CONFIRMED, DATA, ECHO_CODES, FRAMING, KIND_NUMBER
 local NOISE, PROFILES, READS, REQUEST, RESPONSE = NOISE, PROFILES, READS, REQUEST, RESPONSE
 local annotate_with, await_answer, await_echo, bit_slot = annotate_with, await_answer, await_echo, bit_slot
-local build_device, collectgarbage, crc_slot, crc_string_ok = build_device, collectgarbage, crc_slot, crc_string_ok
-local data_bytes, decode_frame, device_for, device_now = data_bytes, decode_frame, device_for, device_now
-local feed, feed_whole, head_slot, ipairs, lane, math = feed, feed_whole, head_slot, ipairs, lane, math
-local new_state, next, pack, pair, pairs, pcall, put_flat = new_state, next, pack, pair, pairs, pcall, put_flat
-local release_run, remember_writes, run_slot, sample_mode = release_run, remember_writes, run_slot, sample_mode
-local span_slot, story, string, string_of, takes_whole = span_slot, story, string, string_of, takes_whole
-local tostring, type, warn, whole_crc_good = tostring, type, warn, whole_crc_good
+local build_device, check_references, collectgarbage = build_device, check_references, collectgarbage
+local crc_slot, crc_string_ok, data_bytes, decode_frame = crc_slot, crc_string_ok, data_bytes, decode_frame
+local device_for, device_now, feed, feed_whole, head_slot = device_for, device_now, feed, feed_whole, head_slot
+local ipairs, lane, math, new_state, next, pack, pair = ipairs, lane, math, new_state, next, pack, pair
+local pairs, pcall, put_flat, release_run, remember_writes = pairs, pcall, put_flat, release_run, remember_writes
+local run_slot, sample_mode, span_slot, story, string = run_slot, sample_mode, span_slot, story, string
+local string_of, takes_whole, tostring, type, warn = string_of, takes_whole, tostring, type, warn
+local whole_crc_good = whole_crc_good
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -8714,6 +8717,7 @@ local function take_frame(st, item, whole)
   decode_frame(item)
   local device = device_now(st, item, item.b)
   annotate_with(st, item, item.b, device)
+  check_references(item, device) -- (a map written in PLC references, judged on the slave's first frames)
   -- What the display does not need is dropped (the record is kept for every later pass): the byte
   -- table (the display reads the tvb) and the decoded fields once nothing can ask for them (a
   -- request's, until its answer is decoded or it can have none). (Warnings and notes are lists made
@@ -8956,7 +8960,7 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   if bits and quantity % 8 > 0 and byte(bytes, 3 + count) >= 2 ^ (quantity % 8) then return nil end
   -- annotate_with: nothing but the registers' bookkeeping
   local device = device_for(st, slave)
-  if not device then return nil end
+  if not device or device.refs_open then return nil end -- (its frames judged: check_references, take_frame)
   local profile = device.profile
   if profile.function_names[code] ~= nil then return nil end
   -- annotate_registers: every register the usual one (not 16#8000, under no layout rule, read before with a
@@ -9063,7 +9067,7 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
     if known == nil or known.length ~= n then return nil end
   end
   local device = known.device
-  if device_for(st, slave) ~= device then return nil end
+  if device_for(st, slave) ~= device or device.refs_open then return nil end
   if own then
     local registers = known.registers
     if registers ~= nil and next(device.depend) ~= nil then

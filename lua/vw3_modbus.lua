@@ -270,6 +270,7 @@ local function name_adu(pinfo, adu)
   local device = vw3.device_now(names_state, f, b)
   if not device then return false end
   env.annotate_with(names_state, f, b, device)
+  env.check_references(f, device) -- (a map written in PLC references: the RTU plugin's take_frame says it too)
   if run == nil and not masks and #f.warnings == 0 then return false end
   return { f = f, b = b, masks = masks, notes = f.notes, warnings = f.warnings, device = device, slave = slave }
 end

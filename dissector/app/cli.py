@@ -27,6 +27,7 @@ from dissector.model import Frame, Item
 from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args
+from dissector.devices.maps_refs import map_warnings
 from dissector.app.rings import group_files
 from dissector.app.samefile import refuse_same_files
 from dissector.render.buses import Bus, Buses
@@ -379,6 +380,9 @@ def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | No
         _decode_inputs(args, env, sinks, annotate)
         sinks.close()
         profile_notes(sinks.buses, annotate, env.stderr, env.stderr_isatty)
+        # (a --map written in PLC references, told from the traffic: once per run, terminal or not)
+        for warning in map_warnings([annotate, *(bus.annotate for bus in sinks.buses.all())]):
+            env.stderr.write(f"{PROG}: warning: {shown(warning)}\n")
         if sinks.wrote is not None and env.stderr_isatty:
             env.stderr.write(f"{PROG}: wrote {shown(sinks.wrote)}\n")
     except BrokenPipeError:

@@ -124,6 +124,8 @@ def plugin_data() -> dict[str, Any]:
         "map_format": {
             "columns": frozenset(maps.COLUMNS),
             "required": list(maps.REQUIRED),
+            "reference": maps.REFERENCE,  # (the column a map written in PLC references has for `address`)
+            "reference_bases": list(maps.REFERENCE_BASES),
             "max_bytes": maps.MAX_MAP_BYTES,
             "scale_min": maps.SCALE_MIN,
             "scale_max": maps.SCALE_MAX,

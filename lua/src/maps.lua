@@ -414,7 +414,7 @@ local function parse_map_choice(text, profile_names)
       if rows == nil then
         errors[#errors + 1] = problem
       else
-        -- (name, high: the reference check's, device.lua reference_check: the file as given, its highest address)
+        -- (name, high: what check_references in lua/src/device.lua reads: the file as given, its highest address)
         local high = -1
         for address in pairs(rows) do high = math.max(high, address) end
         layers[#layers + 1] = { rows = rows, slave = slave, profile = not slave and target or nil,

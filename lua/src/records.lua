@@ -26,6 +26,7 @@ local function take_frame(st, item, whole)
   decode_frame(item)
   local device = device_now(st, item, item.b)
   annotate_with(st, item, item.b, device)
+  check_references(item, device) -- (a map written in PLC references, judged on the slave's first frames)
   -- What the display does not need is dropped (the record is kept for every later pass): the byte
   -- table (the display reads the tvb) and the decoded fields once nothing can ask for them (a
   -- request's, until its answer is decoded or it can have none). (Warnings and notes are lists made
@@ -268,7 +269,7 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   if bits and quantity % 8 > 0 and byte(bytes, 3 + count) >= 2 ^ (quantity % 8) then return nil end
   -- annotate_with: nothing but the registers' bookkeeping
   local device = device_for(st, slave)
-  if not device then return nil end
+  if not device or device.refs_open then return nil end -- (its frames judged: check_references, take_frame)
   local profile = device.profile
   if profile.function_names[code] ~= nil then return nil end
   -- annotate_registers: every register the usual one (not 16#8000, under no layout rule, read before with a
@@ -375,7 +376,7 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
     if known == nil or known.length ~= n then return nil end
   end
   local device = known.device
-  if device_for(st, slave) ~= device then return nil end
+  if device_for(st, slave) ~= device or device.refs_open then return nil end
   if own then
     local registers = known.registers
     if registers ~= nil and next(device.depend) ~= nil then
