@@ -441,6 +441,14 @@ local DATA = {
         ["params"] = {},
         ["repr"] = {},
       },
+      ["reference_twice"] = {
+        ["format"] = "reference %s is address %d, as %s on line %d: a map names each address once, 3X and 4X alike",
+        ["params"] = { "text", "address", "first", "line" },
+        ["repr"] = {
+          ["text"] = true,
+          ["first"] = true,
+        },
+      },
       ["reference"] = {
         ["format"] = "reference %s is not a 4X or 3X register reference (40001..49999, 400001..465536; 30001..39999, 300001..365536)",
         ["params"] = { "text" },
@@ -7016,6 +7024,7 @@ local function read_map(text, origin)
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
   local header, rows, first_line, order, delimiter, number = nil, {}, {}, {}, ",", 0
   local named = {} -- (code, ASCII case folded as --watch matches it -> its address)
+  local references = {} -- (address -> the reference that named it first: maps.py reference_twice)
   -- (lines end where str.splitlines ends them: \r\n, \r, \n, \v, \f, \x1c-\x1e, U+0085, U+2028, U+2029)
   text = text:gsub("\r\n", "\n"):gsub("[\r\v\f\28-\30]", "\n")
   text = text:gsub("\194\133", "\n"):gsub("\226\128[\168\169]", "\n")
@@ -7055,9 +7064,15 @@ local function read_map(text, origin)
         if delimiter ~= "," and values.scale ~= nil and strip(values.scale):match("^[-+]?%d+,%d+$") then
           values.scale = values.scale:gsub(",", ".") -- `0,1`: the decimal comma of the same spreadsheets
         end
-        if values[REFERENCE] ~= nil then values.address = format("%d", map_reference(values[REFERENCE])) end
+        local reference = values[REFERENCE] ~= nil and strip(values[REFERENCE]) or nil
+        if reference ~= nil then values.address = format("%d", map_reference(reference)) end
         local address, row = map_row(values)
+        if rows[address] ~= nil and reference ~= nil then
+          wrong("reference_twice", { text = reference, address = address, first = references[address],
+            line = first_line[address] })
+        end
         if rows[address] ~= nil then wrong("address_twice", { address = address, line = first_line[address] }) end
+        references[address] = reference
         local first = named[row.code:upper()]
         if first ~= nil then
           wrong("code_twice", { code = row.code, address = first, line = first_line[first] })

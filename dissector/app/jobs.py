@@ -17,6 +17,7 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
 from dissector.app.rings import group_files, missing_files
+from dissector.devices.maps_refs import map_warnings
 from dissector.errors import ExitStatus, ProfileError, UsageError
 from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
@@ -60,6 +61,8 @@ class CaptureResult:
     rows: dict[str, int] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
     error: str | None = None  # one line: the capture could not be read
+    # A --map written in PLC references, as the traffic told it (devices/maps_refs.py): said once a run.
+    map_warnings: list[str] = field(default_factory=list)
 
 
 def group_captures(paths: list[str]) -> list[Capture]:
@@ -165,6 +168,7 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
         bus.finish()
         tables.outages(bus.outages)
         result.rows = tables.close()
+        result.map_warnings = map_warnings([annotate])
     except SourceError as error:
         tables.abandon()
         result.error = str(error)
@@ -276,9 +280,11 @@ def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog:
         baud=args.baud if baud_given(args) else None, profile_args=None if args.no_profile else args,
     )
     failed = 0
+    said: list[str] = []  # the map warnings of every capture, each once, after the run (as a file decode)
 
     def report(result: CaptureResult) -> None:
         nonlocal failed
+        said.extend(text for text in result.map_warnings if text not in said)
         for warning in result.warnings:
             stderr.write(f"{prog}: warning: {shown(warning)}\n")  # type: ignore[attr-defined]
         if result.error is not None:
@@ -291,6 +297,8 @@ def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog:
         )
 
     run_captures(captures, settings, args.jobs, args.scheduler, report)
+    for warning in said:
+        stderr.write(f"{prog}: warning: {shown(warning)}\n")  # type: ignore[attr-defined]
     if failed:
         remove_empty_tables(settings.directory)
     if failed and created:

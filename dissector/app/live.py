@@ -47,6 +47,7 @@ from dissector.app.detect import AsciiHeard
 from dissector.app.live_options import BYTESIZE_GIVEN, PARITY_CHOICES, live_mode, mode_bytesize
 from dissector.app.options import shown  # typed names are data: control characters escaped
 from dissector.app.live_view import LineSink, LiveStats, OutputPump, RichSink, Sink, json_line
+from dissector.devices.maps_refs import map_warnings
 from dissector.errors import ExitStatus, LiveError
 from dissector.framing.ascii import AsciiFramer
 from dissector.framing.timing import LineTiming
@@ -487,15 +488,16 @@ def run_live(
         except (BrokenPipeError, OSError):
             pass
     try:
-        _summary(err, live, compiled, stats, handoff, sink, started, files, capture)
+        _summary(err, live, compiled, stats, handoff, sink, started, files, capture, annotate)
     except (OSError, ValueError):
         pass  # stderr is gone (the terminal closed: SIGHUP); the files are whole, closed above
     return capture.status
 
 
 def _summary(err: TextIO, live: Any, compiled: str | None, stats: LiveStats, handoff: Handoff, sink: Sink,
-             started: float, files: CaptureFiles, capture: CaptureThread) -> None:
-    """The capture's last lines on stderr: an error if it failed, then what it saw and wrote."""
+             started: float, files: CaptureFiles, capture: CaptureThread, annotate: Annotator | None) -> None:
+    """The capture's last lines on stderr: an error if it failed, a --map written in PLC references (as a
+    file decode says it, once, devices/maps_refs.py), then what it saw and wrote."""
     if live is not None and os.environ.get(REPORT_ENV):
         err.write(f"{PROG}: live path: engine ({compiled}), {live.engine_items} frames from the engine, "
                   f"{live.python_items} items from the Python stages\n")
@@ -507,6 +509,8 @@ def _summary(err: TextIO, live: Any, compiled: str | None, stats: LiveStats, han
     written = f"; wrote {shown(', '.join(names))}" if names and status == ExitStatus.OK else ""
     if status != ExitStatus.OK:
         err.write(f"{PROG}: error: {shown(capture.reason)}; capture files closed\n")
+    for warning in map_warnings([annotate]):
+        err.write(f"{PROG}: warning: {shown(warning)}\n")
     hidden = stats.not_shown_text()
     err.write(f"{PROG}: {stats.summary(seconds)}{written}{'; ' + hidden if hidden else ''}\n")
     err.flush()

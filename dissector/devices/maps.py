@@ -119,6 +119,10 @@ MESSAGES = {
     "labels_quantity": "a register with {what} labels cannot carry a {column} (its value is a label)",
     "code_twice": "code {code} already names address {address:d} (line {line:d})",
     "reference_and_address": f"a map gives each row an address or a {REFERENCE}, not both",
+    # (two references of one address: 40002 and 400002, or a manual's 30001 and 40001, input and holding
+    # register 0; a map's rows are keyed by address alone, whatever the table)
+    "reference_twice": "reference {text!r} is address {address:d}, as {first!r} on line {line:d}: a map names "
+                       "each address once, 3X and 4X alike",
     "reference": "reference {text!r} is not a 4X or 3X register reference (" + "; ".join(
         f"{base}..{base + 9998}, {base * 10 - 9}..{base * 10 - 9 + 0xFFFF}" for base in REFERENCE_BASES) + ")",
     # Not a line's error: what the traffic tells of a map written in PLC references (maps_refs.py, the
@@ -351,6 +355,7 @@ def parse_map(text: str, origin: str) -> RegisterMap:
     delimiter = ","
     rows: RegisterMap = {}
     first_line: dict[int, int] = {}
+    references: dict[int, str] = {}  # address -> the reference that named it first (a `reference` column's)
     named: dict[str, int] = {}  # code, ASCII case folded as --watch matches it -> its address
     wide: dict[int, int] = {}  # second register of a 32-bit row -> its first
     for number, line in enumerate(text.splitlines(), start=1):
@@ -388,12 +393,17 @@ def parse_map(text: str, origin: str) -> RegisterMap:
         scale = values.get("scale", "")
         if delimiter != "," and _DECIMAL_COMMA.fullmatch(scale.strip(_SPACE)):
             values["scale"] = scale.replace(",", ".")  # `0,1`: the decimal comma of the same spreadsheets
+        reference = values.get(REFERENCE, "").strip(_SPACE)
         try:
             if REFERENCE in values:
                 values["address"] = str(reference_address(values.pop(REFERENCE)))
             row = _row(values)
         except ValueError as error:
             raise ProfileError(f"{origin}:{number}: {error}") from None
+        if row.address in rows and row.address in references:
+            raise ProfileError(f"{origin}:{number}: " + _say(
+                "reference_twice", text=reference, address=row.address, first=references[row.address],
+                line=first_line[row.address]))
         if row.address in rows:
             raise ProfileError(
                 f"{origin}:{number}: " + _say("address_twice", address=row.address, line=first_line[row.address])
@@ -405,6 +415,8 @@ def parse_map(text: str, origin: str) -> RegisterMap:
                 "code_twice", code=row.code, address=first, line=first_line[first]))
         rows[row.address] = row
         first_line[row.address] = number
+        if isinstance(rows, ReferenceRows):
+            references[row.address] = reference
         named[folded] = row.address
         if row.words == 2:
             wide[row.address + 1] = row.address

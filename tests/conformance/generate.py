@@ -312,6 +312,26 @@ MAP_TEXTS = {
     "address twice": "address,code\n1,A\n0x1,B\n",
     "second register": "address,code,type\n1,A,uint32\n3,C,uint32\n2,B,\n4,D,\n",
     "no header": "# only a comment\n\n",
+    # A map written in PLC references (a `reference` column in place of `address`): 4X and 3X, five digits
+    # and six, each range's ends; decimal digits only (no sign, no 0x, no other script's digits); refused
+    # as either reader words it: both columns, a reference outside the ranges, two references of one address.
+    "reference 4X": "reference,code\n40001,A\n40002,B\n 49999 ,C\n400010 ,D\n465536,E\n",
+    "reference 3X": "Reference;code;scale\n30001;A;0,1\n300101;B;\n39999;C;\n365536;D;\n",
+    "reference 32-bit": "reference,code,type,order\n40010,A,uint32,CDAB\n40012,B,float32,\n",
+    "reference and address": "address,code,reference\n",
+    "reference without code": "reference,name\n",
+    "reference below 4X": "reference,code\n40000,A\n",
+    "reference past 5 digits": "reference,code\n50000,A\n",
+    "reference past 6 digits": "reference,code\n465537,A\n",
+    "reference of an address": "reference,code\n12,A\n",
+    "reference signed": "reference,code\n+40001,A\n",
+    "reference hex": "reference,code\n0x9C41,A\n",
+    "reference unicode digits": "reference,code\n\u0664\u0660\u0660\u0660\u0661,A\n",
+    "reference empty": "reference,code\n,A\n",
+    "reference twice": "reference,code\n40002,A\n400002,B\n",
+    # (a manual's input and holding registers together: a map keys rows by address, whatever the table)
+    "reference 3X and 4X": "reference,code\n30001,IN\n40001,HOLD\n",
+    "reference second register": "reference,code,type\n40001,A,int32\n40002,B,\n",
     "empty": "",
 }
 
