@@ -4,7 +4,7 @@ link-layer payloads (USER0, RTAC serial) that pcap and pcapng records carry.
 from __future__ import annotations
 
 import struct
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import BinaryIO
 
@@ -201,12 +201,15 @@ def record_chunks(
     record: int,
     log: WarningLog,
     chunk_size: int,
+    stamped: Callable[[Stamp], None] | None = None,
 ) -> Iterator[Chunk]:
     """The serial bytes of one pcap/pcapng record of `length` captured bytes.
 
     A record longer than chunk_size comes out in several chunks (memory stays bounded whatever the
     file says); only the last one carries boundary=True. When the input ends inside the record,
-    the bytes that are there are still delivered, with a warning and no boundary.
+    the bytes that are there are still delivered, with a warning and no boundary. `stamped` is given an
+    RTAC record's own time, once its header is read: a record of the header alone (an RTAC event: a
+    break, a control line) yields no chunk, yet says the tap was recording then (recorded_until).
     """
     remaining = length
     first = True
@@ -228,6 +231,8 @@ def record_chunks(
                 return
             time, size = header
             piece = piece[size:]
+            if stamped is not None and time is not None:
+                stamped(time)
         first = False
         if piece:
             yield Chunk(piece, time, remaining == 0 and not cut)

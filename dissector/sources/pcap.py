@@ -132,7 +132,8 @@ class PcapRecords:
                     f"({self.snaplen}): a damaged file?",
                 )
             time = None if corrupt else Stamp.from_parts(seconds, fraction, self.units)
-            chunks = record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size)
+            chunks = record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size,
+                                   self._stamped if self.linktype == LINKTYPE_RTAC_SERIAL else None)
             epoch = not (seconds or fraction)
             if not epoch and not corrupt and self.linktype != LINKTYPE_RTAC_SERIAL:  # (an RTAC's is in its bytes)
                 self.recorded_until = time
@@ -146,6 +147,11 @@ class PcapRecords:
                 # (-w's untimed record: see EpochRecord; an RTAC record carries its own time)
                 chunks = record_chunks(inp, captured, None, self.linktype, self.record, log, self.chunk_size)
             yield from chunks
+
+
+    def _stamped(self, time: Stamp) -> None:
+        """An RTAC record's own time (its header's), data or not: the tap was recording then."""
+        self.recorded_until = time
 
 
 CORRUPT_STAMPS = "corrupt time stamps"

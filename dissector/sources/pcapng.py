@@ -339,8 +339,9 @@ class _Reader:
             )
         before = self.inp.position
         last: Chunk | None = None
+        rtac = self._stamped if interface.linktype == LINKTYPE_RTAC_SERIAL else None
         for chunk in record_chunks(
-            self.inp, captured, time, interface.linktype, self.record, self.log, self.chunk_size
+            self.inp, captured, time, interface.linktype, self.record, self.log, self.chunk_size, rtac
         ):
             if last is not None:
                 yield last
@@ -366,6 +367,10 @@ class _Reader:
         if read < rest:
             self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
             raise _Ended()
+
+    def _stamped(self, time: Stamp) -> None:
+        """An RTAC record's own time (its header's), data or not: the tap was recording then."""
+        self.last_time = time
 
     def _comments(self, options: bytes) -> tuple[str, ...]:
         """The packet's comments (opt_comment), but those vw3-decode wrote of its own decode."""

@@ -1,7 +1,7 @@
 """The line on standard error that says where a pcapng's packet comments are names the bus they are on.
 A pcapng with packets of two serial interfaces (Wireshark capturing two lines) is decoded as two buses,
 each numbering its own records: the comment on the file's second packet is record 1 of the second bus
-(tshark: frame 2). The line named the file alone, "c.pcapng: 1 packet comment (record 1)", which sent the
+(tshark: frame 2). The line named the file alone, "FILE: 1 packet comment (record 1)", which sent the
 reader to the first bus's record 1, a packet with no comment."""
 from __future__ import annotations
 
