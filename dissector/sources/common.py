@@ -119,6 +119,11 @@ class Input:
             wanted -= len(part)
         return b"".join(parts)
 
+    def unread(self, data: bytes) -> None:
+        """Give back `data`, the bytes just read: they are read again next (a reader that looked ahead)."""
+        self._prefix = data + self._prefix
+        self.position -= len(data)
+
     def read_some(self, count: int) -> bytes:
         """Up to `count` bytes, as soon as some are available; b"" at the end of the input."""
         if self._prefix:

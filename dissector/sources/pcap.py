@@ -7,6 +7,8 @@ serial bytes are accepted (common.SUPPORTED_LINKTYPES); anything else is an erro
 """
 from __future__ import annotations
 
+import os
+import stat
 import struct
 from collections.abc import Iterator
 from dataclasses import replace
@@ -32,6 +34,12 @@ MAGICS: dict[bytes, tuple[str, int]] = {
 # pkt_type u8, pad u8), nothing a serial line needs.
 MODIFIED_MAGICS: dict[bytes, str] = {bytes.fromhex("34cdb2a1"): "<", bytes.fromhex("a1b2cd34"): ">"}
 MODIFIED_EXTRA = 8
+# The record header's bytes after the standard 16 in each variant wiretap's libpcap.c tries, in its order:
+# with the standard magic pcap, ss990417 (RedHat 6.1's tcpdump: editcap -F rh6_1pcap) and Nokia IPSO
+# (-F nokiapcap); with the modified magic ss991029 (-F modpcap) and ss990915 (SuSE 6.3's: -F suse6_3pcap).
+STANDARD_VARIANTS = (0, 8, 4)
+MODIFIED_VARIANTS = (MODIFIED_EXTRA, 12)
+MAX_PACKET = 262_144  # wiretap's WTAP_MAX_PACKET_SIZE: a longer record says the variant is wrong
 FILE_HEADER_SIZE = 24
 RECORD_HEADER_SIZE = 16
 
@@ -94,6 +102,37 @@ class PcapRecords:
         # The upper bits of the link-type field hold FCS information, irrelevant to a serial line.
         self.linktype = network & 0xFFFF
         check_linktype(inp.name, self.linktype)
+        if self.units == 1_000_000 and _rereadable(inp):
+            self.extra = self._variant(MODIFIED_VARIANTS if magic in MODIFIED_MAGICS else STANDARD_VARIANTS)
+
+    def _variant(self, extras: tuple[int, ...]) -> int:
+        """The record header's extra bytes, as wiretap's libpcap.c guesses the variant a magic leaves open: the
+        first whose first two record headers look sane (else the least wrong), read ahead and given back.
+        Read as standard headers, an ss990417 file's records took their 8 extra bytes as serial bytes and
+        went astray from the second record on (a fraction of a second of 1767225600, a record of 1.7 GB)."""
+        inp = self.inp
+        head = inp.read(RECORD_HEADER_SIZE + max(extras))
+        first = min(struct.unpack_from(self.order + "I", head, 8)[0], MAX_PACKET) if len(head) >= 12 else 0
+        ahead = head + inp.read(first + RECORD_HEADER_SIZE + max(extras))
+        inp.unread(ahead)
+        faults: list[int] = []
+        for extra in extras:
+            fault = self._faults(ahead, 0)
+            following = RECORD_HEADER_SIZE + extra + first
+            if len(ahead) >= following + RECORD_HEADER_SIZE + extra:  # (a file ending there: this variant's)
+                fault += self._faults(ahead, following)
+            if not fault:
+                return extra
+            faults.append(fault)
+        return extras[faults.index(min(faults))]
+
+    def _faults(self, data: bytes, at: int) -> int:
+        """What is wrong with the record header at `at` read as a standard one (libpcap_try_header)."""
+        if len(data) < at + RECORD_HEADER_SIZE:
+            return 0
+        _seconds, fraction, captured, original = struct.unpack_from(self.order + "IIII", data, at)
+        return ((fraction >= self.units) + (captured > MAX_PACKET) + (original > 64 << 20)
+                + (0 < self.snaplen < captured) + (captured > original))
 
     def records(self, inp: Input) -> Iterator[Chunk]:
         """The chunks of the records `inp` holds from its position on."""
@@ -152,6 +191,16 @@ class PcapRecords:
     def _stamped(self, time: Stamp) -> None:
         """An RTAC record's own time (its header's), data or not: the tap was recording then."""
         self.recorded_until = time
+
+
+def _rereadable(inp: Input) -> bool:
+    """Can the records be read ahead without waiting on a live feed (a file, not a pipe)? wiretap reads a
+    variant's file only then ("that type of pcap file can't be read from a pipe")."""
+    try:
+        return stat.S_ISREG(os.fstat(inp.stream.fileno()).st_mode)  # (a compressed file's: its own)
+    except (AttributeError, OSError, ValueError):  # (no descriptor: bytes in memory)
+        seekable = getattr(inp.stream, "seekable", None)
+        return bool(seekable and seekable())
 
 
 CORRUPT_STAMPS = "corrupt time stamps"
