@@ -117,10 +117,12 @@ class PcapRecords:
         inp.unread(ahead)
         faults: list[int] = []
         for extra in extras:
+            # (libpcap_try: a first header at fault tells alone, and alike for every variant: its 16 bytes are the
+            # standard ones; a file ending before the second header is this variant's)
             fault = self._faults(ahead, 0)
             following = RECORD_HEADER_SIZE + extra + first
-            if len(ahead) >= following + RECORD_HEADER_SIZE + extra:  # (a file ending there: this variant's)
-                fault += self._faults(ahead, following)
+            if not fault and len(ahead) >= following + RECORD_HEADER_SIZE + extra:
+                fault = self._faults(ahead, following)
             if not fault:
                 return extra
             faults.append(fault)
