@@ -3,6 +3,8 @@ link-layer payloads (USER0, RTAC serial) that pcap and pcapng records carry.
 """
 from __future__ import annotations
 
+import os
+import stat
 import struct
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
@@ -145,6 +147,16 @@ class Input:
                 break
             skipped += len(part)
         return skipped
+
+
+def rereadable(inp: Input) -> bool:
+    """Is the input a file (its bytes all there), not a live feed (a pipe, a terminal): can a reader look
+    ahead without waiting? A compressed file's descriptor is the file's own."""
+    try:
+        return stat.S_ISREG(os.fstat(inp.stream.fileno()).st_mode)
+    except (AttributeError, OSError, ValueError):  # (no descriptor: bytes in memory)
+        seekable = getattr(inp.stream, "seekable", None)
+        return bool(seekable and seekable())
 
 
 def linktype_error(name: str, linktype: int, where: str = "") -> SourceError:

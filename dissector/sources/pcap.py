@@ -7,8 +7,6 @@ serial bytes are accepted (common.SUPPORTED_LINKTYPES); anything else is an erro
 """
 from __future__ import annotations
 
-import os
-import stat
 import struct
 from collections.abc import Iterator
 from dataclasses import replace
@@ -21,6 +19,7 @@ from dissector.sources.common import (
     WarningLog,
     check_linktype,
     record_chunks,
+    rereadable,
 )
 
 # Magic as the first four bytes of the file -> (struct byte order, timestamp fraction units).
@@ -102,7 +101,9 @@ class PcapRecords:
         # The upper bits of the link-type field hold FCS information, irrelevant to a serial line.
         self.linktype = network & 0xFFFF
         check_linktype(inp.name, self.linktype)
-        if self.units == 1_000_000 and _rereadable(inp):
+        # (read ahead from a file alone, not a live feed: wiretap reads a variant's file only then, "that type
+        # of pcap file can't be read from a pipe")
+        if self.units == 1_000_000 and rereadable(inp):
             self.extra = self._variant(MODIFIED_VARIANTS if magic in MODIFIED_MAGICS else STANDARD_VARIANTS)
 
     def _variant(self, extras: tuple[int, ...]) -> int:
@@ -193,16 +194,6 @@ class PcapRecords:
     def _stamped(self, time: Stamp) -> None:
         """An RTAC record's own time (its header's), data or not: the tap was recording then."""
         self.recorded_until = time
-
-
-def _rereadable(inp: Input) -> bool:
-    """Can the records be read ahead without waiting on a live feed (a file, not a pipe)? wiretap reads a
-    variant's file only then ("that type of pcap file can't be read from a pipe")."""
-    try:
-        return stat.S_ISREG(os.fstat(inp.stream.fileno()).st_mode)  # (a compressed file's: its own)
-    except (AttributeError, OSError, ValueError):  # (no descriptor: bytes in memory)
-        seekable = getattr(inp.stream, "seekable", None)
-        return bool(seekable and seekable())
 
 
 CORRUPT_STAMPS = "corrupt time stamps"

@@ -86,9 +86,25 @@ def test_details_then_bytes_is_a_packet_dump(tmp_path: Path) -> None:
 
 
 def test_from_standard_input_too(tmp_path: Path) -> None:
-    # (read as it comes: frames before profile auto knows the slave's device are provisional, README)
+    # (a file given as standard input, `< export.txt`, its bytes all there; read as it comes: frames before
+    # profile auto knows the slave's device are provisional, README)
     provisional = [line.replace("  CRC ok", " [provisional]  CRC ok") for line in LINES]
     assert run_cli(["-"], stdin=DETAILS_AND_BYTES.encode()) == (0, "\n".join(provisional) + "\n", "")
+
+
+def test_a_pipe_is_judged_on_what_came(tmp_path: Path) -> None:
+    # (a live feed is not held back for 64 KiB: from a pipe, the first lines judge, as before)
+    import os
+    import subprocess
+    import sys
+
+    root = Path(__file__).resolve().parents[2]
+    env = {**os.environ, "PYTHONPATH": str(root)}
+    run = subprocess.run([sys.executable, "-m", "dissector", "-"], input=DETAILS_AND_BYTES.encode(), cwd=root,
+                         env=env, capture_output=True, timeout=120)
+    assert run.returncode == 0
+    assert run.stderr.decode().splitlines()[0] == ("vw3-decode: warning: standard input: the input is text, but "
+                                                   "neither a hex dump nor Modbus ASCII: decoded as raw bytes")
 
 
 def test_text_in_no_format_is_still_its_bytes(tmp_path: Path) -> None:
