@@ -100,7 +100,7 @@ def _open_input(files: tuple[str, ...], bus: PacketInterface | None, args: Decod
     def open_file(path: str) -> Any:
         if bus is None:
             return open_source(path, args.format, mode=args.mode, stdin=stdin)
-        return open_interface(path, bus.ordinal, args.mode, tell_skipped=bus.first)
+        return open_interface(path, bus.ordinal, args.mode, tell_skipped=bus.first, where=f"{path}: {bus.label()}: ")
 
     return open_file(files[0]) if len(files) == 1 else RingSource(files, open_file)
 
