@@ -10753,7 +10753,11 @@ if ok_original and rtac_original ~= nil then
   function rtac_time.dissector(tvb, pinfo, tree)
     if tvb:len() >= 8 and not pinfo.visited then
       local seconds, micros = tvb:range(0, 4):uint(), tvb:range(4, 4):uint()
-      rtac_times[pinfo.number] = lane.rtac_ns(seconds, micros) -- (in ns, exact: show.lua record_ns)
+      local number, ns = pinfo.number, lane.rtac_ns(seconds, micros)
+      rtac_times[number] = ns -- (in ns, exact: show.lua record_ns)
+      -- A record of the header alone (an RTAC event: a break, a control line) reaches no VW3 dissection, yet
+      -- the tap was recording then (vw3.pairing's ended; sources/common.py record_chunks' `stamped`).
+      if tvb:len() <= 12 and number >= newest_record then recorded_until = ns end
     end
     return rtac_original:call(tvb, pinfo, tree)
   end

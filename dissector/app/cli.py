@@ -439,7 +439,7 @@ def _decode_inputs(
             sinks.valid_frames = sinks.input_bytes = 0
             chunks, sinks.trail = observe_records(chunks, source_format, sinks.pcap is not None)
             decode_one(chunks, mode, timed, fix, dissector, sinks, annotate, warn)
-            tell_comments(sinks, path, env.stderr)
+            tell_comments(sinks, path, env.stderr, title if bus is not None else None)
             sinks.copy_end.ended(None if sinks.done else recorded())  # (-c N: the copy ends at the Nth)
             # (-c N may stop in an input's first noise run, before its frames: not judged then.)
             if sinks.input_bytes and not sinks.valid_frames and path is not None and not sinks.done:

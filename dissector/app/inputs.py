@@ -100,7 +100,7 @@ def _open_input(files: tuple[str, ...], bus: PacketInterface | None, args: Decod
     def open_file(path: str) -> Any:
         if bus is None:
             return open_source(path, args.format, mode=args.mode, stdin=stdin)
-        return open_interface(path, bus.ordinal, args.mode, tell_skipped=bus.first)
+        return open_interface(path, bus.ordinal, args.mode, tell_skipped=bus.first, where=f"{path}: {bus.label()}: ")
 
     return open_file(files[0]) if len(files) == 1 else RingSource(files, open_file)
 
@@ -334,10 +334,12 @@ def comments_of(pieces: dict[int, list[Piece]]) -> dict[int, list[str]]:
 RECORDS_TOLD = 5  # record numbers a line about packet comments names
 
 
-def tell_comments(sinks: Any, path: str | None, stderr: Any) -> None:
+def tell_comments(sinks: Any, path: str | None, stderr: Any, bus: str | None = None) -> None:
     """After an input with packet comments: a -w pcap has no place for them (a warning), and a display
     that does not show them (the summary, -x, -T fields) says where they are; a line a file (a ring
-    buffer's files number their records each); -V, --json and a pcapng -w show or keep them."""
+    buffer's files number their records each); -V, --json and a pcapng -w show or keep them. `bus`: the
+    title of a pcapng interface read as its own bus, which numbers its own records (named, else "record 1"
+    sends the reader to the first bus's)."""
     trail = sinks.trail
     if trail is None or not trail.comments:
         return
@@ -345,7 +347,7 @@ def tell_comments(sinks: Any, path: str | None, stderr: Any) -> None:
     for name, record, comments in trail.records:
         files.setdefault(name, []).append((record, comments))
     for name, counts in files.items():
-        name = name or (path if path not in (None, "-") else "--hex" if path is None else "standard input")
+        name = name or bus or (path if path not in (None, "-") else "--hex" if path is None else "standard input")
         count = sum(comments for _record, comments in counts)
         numbers = sorted({record for record, _comments in counts})
         records = ", ".join(map(str, numbers[:RECORDS_TOLD])) + (", ..." if len(numbers) > RECORDS_TOLD else "")

@@ -38,7 +38,7 @@ class OutputOptions:
     hexdump: bool = False
     json: bool = False
     color: str = "auto"  # auto | always | never
-    time_format: str = "r"  # tshark -t: r a ad d dd e u ud (render.timefmt)
+    time_format: str = "r"  # tshark -t: r a ad adoy d dd e u ud udoy (render.timefmt)
     fields: FieldsOptions | None = None  # -T fields
     registers: RegistersWriter | None = None  # -T registers
 

@@ -19,11 +19,13 @@ TIME_FORMATS: dict[str, str] = {
     "r": "relative to the first item",
     "a": "local time of day",
     "ad": "local date and time",
+    "adoy": "local year/day of the year and time",
     "d": "delta from the previous item captured",
     "dd": "delta from the previous item displayed",
     "e": "seconds since the epoch",
     "u": "UTC time of day",
     "ud": "UTC date and time",
+    "udoy": "UTC year/day of the year and time",
 }
 UNTIMED = "-"
 # Keys -T fields takes besides the NDJSON ones (tshark's frame.time_relative, time_delta, ..._displayed).
@@ -85,11 +87,15 @@ def _decimals(fraction: int, digits: int) -> str:
     return f".{fraction:0{digits}d}" if digits else ""
 
 
-def _clock_text(seconds: float, utc: bool, date: bool, digits: int = MICRO_DIGITS, cut: bool = False) -> str:
+def _clock_text(seconds: float, utc: bool, date: bool, digits: int = MICRO_DIGITS, cut: bool = False,
+                year_day: bool = False) -> str:
+    """`year_day`: the date as tshark's -t adoy/udoy write it, year/day of the year (2026/001)."""
     whole, fraction = whole_fraction(seconds, digits, cut)
     try:
         parts = _time.gmtime(whole) if utc else _time.localtime(whole)
         day = f"{parts.tm_year:04d}-{parts.tm_mon:02d}-{parts.tm_mday:02d} " if date else ""  # 0001, as tshark
+        if year_day:
+            day = f"{parts.tm_year:04d}/{parts.tm_yday:03d} "
         return f"{day}{_time.strftime('%H:%M:%S', parts)}{_decimals(fraction, digits)}"
     except (OverflowError, OSError, ValueError):  # outside time_t or the C library's years
         return NOT_REPRESENTABLE
@@ -153,7 +159,8 @@ class Clock:
         if fmt == "e":
             ns = getattr(time, "ns", None)  # (a float near 1.7e9 s keeps 0.2 us: not 9 decimals)
             return f"{time:.{self.digits}f}" if ns is None else signed_text(ns, self.digits, cut)
-        return _clock_text(time, utc=fmt.startswith("u"), date=fmt.endswith("d"), digits=self.digits, cut=cut)
+        return _clock_text(time, utc=fmt.startswith("u"), date=fmt.endswith("d"), digits=self.digits, cut=cut,
+                           year_day=fmt.endswith("doy"))
 
     def _since(self, time: float, reference: float | None) -> str:
         """`time` less its reference (none: 0) to the column's decimals: a capture's from the stamps'

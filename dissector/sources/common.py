@@ -3,8 +3,10 @@ link-layer payloads (USER0, RTAC serial) that pcap and pcapng records carry.
 """
 from __future__ import annotations
 
+import os
+import stat
 import struct
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from typing import BinaryIO
 
@@ -119,6 +121,11 @@ class Input:
             wanted -= len(part)
         return b"".join(parts)
 
+    def unread(self, data: bytes) -> None:
+        """Give back `data`, the bytes just read: they are read again next (a reader that looked ahead)."""
+        self._prefix = data + self._prefix
+        self.position -= len(data)
+
     def read_some(self, count: int) -> bytes:
         """Up to `count` bytes, as soon as some are available; b"" at the end of the input."""
         if self._prefix:
@@ -140,6 +147,16 @@ class Input:
                 break
             skipped += len(part)
         return skipped
+
+
+def rereadable(inp: Input) -> bool:
+    """Is the input a file (its bytes all there), not a live feed (a pipe, a terminal): can a reader look
+    ahead without waiting? A compressed file's descriptor is the file's own."""
+    try:
+        return stat.S_ISREG(os.fstat(inp.stream.fileno()).st_mode)
+    except (AttributeError, OSError, ValueError):  # (no descriptor: bytes in memory)
+        seekable = getattr(inp.stream, "seekable", None)
+        return bool(seekable and seekable())
 
 
 def linktype_error(name: str, linktype: int, where: str = "") -> SourceError:
@@ -201,12 +218,15 @@ def record_chunks(
     record: int,
     log: WarningLog,
     chunk_size: int,
+    stamped: Callable[[Stamp], None] | None = None,
 ) -> Iterator[Chunk]:
     """The serial bytes of one pcap/pcapng record of `length` captured bytes.
 
     A record longer than chunk_size comes out in several chunks (memory stays bounded whatever the
     file says); only the last one carries boundary=True. When the input ends inside the record,
-    the bytes that are there are still delivered, with a warning and no boundary.
+    the bytes that are there are still delivered, with a warning and no boundary. `stamped` is given an
+    RTAC record's own time, once its header is read: a record of the header alone (an RTAC event: a
+    break, a control line) yields no chunk, yet says the tap was recording then (recorded_until).
     """
     remaining = length
     first = True
@@ -228,6 +248,8 @@ def record_chunks(
                 return
             time, size = header
             piece = piece[size:]
+            if stamped is not None and time is not None:
+                stamped(time)
         first = False
         if piece:
             yield Chunk(piece, time, remaining == 0 and not cut)

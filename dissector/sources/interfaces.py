@@ -108,17 +108,20 @@ def _walk(stream, size: int, path: str) -> list[PacketInterface]:  # type: ignor
 
 
 def open_interface(  # type: ignore[no-untyped-def]
-    path: str, ordinal: int, mode: str | None, chunk_size: int = 65536, tell_skipped: bool = True
+    path: str, ordinal: int, mode: str | None, chunk_size: int = 65536, tell_skipped: bool = True,
+    where: str = "",
 ):
     """A Source (sources/reader.py) of the packets of one interface of the pcapng file `path`
-    (`tell_skipped`: this bus warns of the interfaces carrying no serial bytes; one bus of the file does)."""
+    (`tell_skipped`: this bus warns of the interfaces carrying no serial bytes; one bus of the file does;
+    `where`: said before its warnings that number a record, the bus's title)."""
     from dissector.sources.reader import MIN_CHUNK, Source, sampled_mode
 
     chunk_size = max(chunk_size, MIN_CHUNK)
     stream = open(path, "rb")
     try:
         log = WarningLog()
-        chunks = read_pcapng(Input(stream, path), log, chunk_size, only=ordinal, tell_skipped=tell_skipped)
+        chunks = read_pcapng(Input(stream, path), log, chunk_size, only=ordinal, tell_skipped=tell_skipped,
+                             where=where)
         head: list = []
         if mode is None:  # as reader.py decides it: the first payload bytes, replayed first
             mode, head = sampled_mode(chunks)

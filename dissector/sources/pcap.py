@@ -19,6 +19,7 @@ from dissector.sources.common import (
     WarningLog,
     check_linktype,
     record_chunks,
+    rereadable,
 )
 
 # Magic as the first four bytes of the file -> (struct byte order, timestamp fraction units).
@@ -32,6 +33,12 @@ MAGICS: dict[bytes, tuple[str, int]] = {
 # pkt_type u8, pad u8), nothing a serial line needs.
 MODIFIED_MAGICS: dict[bytes, str] = {bytes.fromhex("34cdb2a1"): "<", bytes.fromhex("a1b2cd34"): ">"}
 MODIFIED_EXTRA = 8
+# The record header's bytes after the standard 16 in each variant wiretap's libpcap.c tries, in its order:
+# with the standard magic pcap, ss990417 (RedHat 6.1's tcpdump: editcap -F rh6_1pcap) and Nokia IPSO
+# (-F nokiapcap); with the modified magic ss991029 (-F modpcap) and ss990915 (SuSE 6.3's: -F suse6_3pcap).
+STANDARD_VARIANTS = (0, 8, 4)
+MODIFIED_VARIANTS = (MODIFIED_EXTRA, 12)
+MAX_PACKET = 262_144  # wiretap's WTAP_MAX_PACKET_SIZE: a longer record says the variant is wrong
 FILE_HEADER_SIZE = 24
 RECORD_HEADER_SIZE = 16
 
@@ -94,6 +101,41 @@ class PcapRecords:
         # The upper bits of the link-type field hold FCS information, irrelevant to a serial line.
         self.linktype = network & 0xFFFF
         check_linktype(inp.name, self.linktype)
+        # (read ahead from a file alone, not a live feed: wiretap reads a variant's file only then, "that type
+        # of pcap file can't be read from a pipe")
+        if self.units == 1_000_000 and rereadable(inp):
+            self.extra = self._variant(MODIFIED_VARIANTS if magic in MODIFIED_MAGICS else STANDARD_VARIANTS)
+
+    def _variant(self, extras: tuple[int, ...]) -> int:
+        """The record header's extra bytes, as wiretap's libpcap.c guesses the variant a magic leaves open: the
+        first whose first two record headers look sane (else the least wrong), read ahead and given back.
+        Read as standard headers, an ss990417 file's records took their 8 extra bytes as serial bytes and
+        went astray from the second record on (a fraction of a second of 1767225600, a record of 1.7 GB)."""
+        inp = self.inp
+        head = inp.read(RECORD_HEADER_SIZE + max(extras))
+        first = min(struct.unpack_from(self.order + "I", head, 8)[0], MAX_PACKET) if len(head) >= 12 else 0
+        ahead = head + inp.read(first + RECORD_HEADER_SIZE + max(extras))
+        inp.unread(ahead)
+        faults: list[int] = []
+        for extra in extras:
+            # (libpcap_try: a first header at fault tells alone, and alike for every variant: its 16 bytes are the
+            # standard ones; a file ending before the second header is this variant's)
+            fault = self._faults(ahead, 0)
+            following = RECORD_HEADER_SIZE + extra + first
+            if not fault and len(ahead) >= following + RECORD_HEADER_SIZE + extra:
+                fault = self._faults(ahead, following)
+            if not fault:
+                return extra
+            faults.append(fault)
+        return extras[faults.index(min(faults))]
+
+    def _faults(self, data: bytes, at: int) -> int:
+        """What is wrong with the record header at `at` read as a standard one (libpcap_try_header)."""
+        if len(data) < at + RECORD_HEADER_SIZE:
+            return 0
+        _seconds, fraction, captured, original = struct.unpack_from(self.order + "IIII", data, at)
+        return ((fraction >= self.units) + (captured > MAX_PACKET) + (original > 64 << 20)
+                + (0 < self.snaplen < captured) + (captured > original))
 
     def records(self, inp: Input) -> Iterator[Chunk]:
         """The chunks of the records `inp` holds from its position on."""
@@ -132,7 +174,8 @@ class PcapRecords:
                     f"({self.snaplen}): a damaged file?",
                 )
             time = None if corrupt else Stamp.from_parts(seconds, fraction, self.units)
-            chunks = record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size)
+            chunks = record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size,
+                                   self._stamped if self.linktype == LINKTYPE_RTAC_SERIAL else None)
             epoch = not (seconds or fraction)
             if not epoch and not corrupt and self.linktype != LINKTYPE_RTAC_SERIAL:  # (an RTAC's is in its bytes)
                 self.recorded_until = time
@@ -146,6 +189,11 @@ class PcapRecords:
                 # (-w's untimed record: see EpochRecord; an RTAC record carries its own time)
                 chunks = record_chunks(inp, captured, None, self.linktype, self.record, log, self.chunk_size)
             yield from chunks
+
+
+    def _stamped(self, time: Stamp) -> None:
+        """An RTAC record's own time (its header's), data or not: the tap was recording then."""
+        self.recorded_until = time
 
 
 CORRUPT_STAMPS = "corrupt time stamps"

@@ -97,8 +97,12 @@ class _Reader:
     order the file describes them, across sections); the others' packets are passed over."""
 
     def __init__(self, inp: Input, log: WarningLog, chunk_size: int, first_interface: bool = False,
-                 only: int | None = None, tell_skipped: bool = True) -> None:
+                 only: int | None = None, tell_skipped: bool = True, where: str = "") -> None:
         self.inp = inp
+        # The warnings that number a record: `where` (the bus's title, `file: if_name`) first when the file is
+        # read once per interface, each numbering its own records ("record 2" alone sent the reader to the
+        # first bus's, or to tshark's frame 2).
+        self.record_log = _Where(log, where) if where else log
         self.only = only
         self.tell_skipped = tell_skipped  # count the packets of interfaces not read (one bus of several says)
         self.described = 0  # interfaces described so far in the file, all sections
@@ -333,14 +337,15 @@ class _Reader:
         they are read: they come after the data)."""
         self.record += 1
         if captured < original:
-            self.log.warn(
+            self.record_log.warn(
                 "records captured in part",
                 f"record {self.record}: only {captured} of its {original} bytes were captured",
             )
         before = self.inp.position
         last: Chunk | None = None
+        rtac = self._stamped if interface.linktype == LINKTYPE_RTAC_SERIAL else None
         for chunk in record_chunks(
-            self.inp, captured, time, interface.linktype, self.record, self.log, self.chunk_size
+            self.inp, captured, time, interface.linktype, self.record, self.record_log, self.chunk_size, rtac
         ):
             if last is not None:
                 yield last
@@ -367,6 +372,10 @@ class _Reader:
             self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
             raise _Ended()
 
+    def _stamped(self, time: Stamp) -> None:
+        """An RTAC record's own time (its header's), data or not: the tap was recording then."""
+        self.last_time = time
+
     def _comments(self, options: bytes) -> tuple[str, ...]:
         """The packet's comments (opt_comment), but those vw3-decode wrote of its own decode."""
         texts = (value.decode("utf-8", "replace") for code, value in _options(options, self.order)
@@ -387,6 +396,16 @@ class _Reader:
 def serial(linktype: int) -> bool:
     """Does an interface of this link type carry serial bytes vw3-decode reads (common.check_linktype)?"""
     return linktype in (LINKTYPE_USER0, LINKTYPE_RTAC_SERIAL)
+
+
+class _Where(WarningLog):
+    """A log's warnings with where they are said first (`file: if_name: record 2: ...`), counted as its own."""
+
+    def __init__(self, log: WarningLog, where: str) -> None:  # (no state of its own: `log` keeps it)
+        self._log, self._where = log, where
+
+    def warn(self, kind: str, message: str) -> None:
+        self._log.warn(kind, f"{self._where}{message}")
 
 
 class _Ended(Exception):
@@ -467,7 +486,7 @@ class PcapngChunks:
 
 
 def read_pcapng(inp: Input, log: WarningLog, chunk_size: int, only: int | None = None,
-                tell_skipped: bool = True) -> PcapngChunks:
+                tell_skipped: bool = True, where: str = "") -> PcapngChunks:
     """The chunks of a pcapng's packets (`only`: of that interface alone, by its ordinal; `tell_skipped`:
-    warn of the interfaces carrying no serial bytes)."""
-    return PcapngChunks(_Reader(inp, log, chunk_size, only=only, tell_skipped=tell_skipped))
+    warn of the interfaces carrying no serial bytes; `where`: said before a warning that numbers a record)."""
+    return PcapngChunks(_Reader(inp, log, chunk_size, only=only, tell_skipped=tell_skipped, where=where))

@@ -23,7 +23,7 @@ from itertools import islice
 from typing import BinaryIO
 
 from dissector.protocol.ascii import MODE_REACH, MODE_SAMPLE, sample_mode  # (MODE_SAMPLE: codegen's)
-from dissector.sources.common import Input, SourceError, WarningLog
+from dissector.sources.common import Input, SourceError, WarningLog, rereadable
 from dissector.sources.compressed import HEADER_BYTES, Decompressed, compression
 from dissector.sources.dumps import dump_tool, read_dump, refuse_words, word_dump
 from dissector.sources.encoding import Encoding, decoded, marked, text_input
@@ -161,8 +161,10 @@ def _sniff(inp: Input) -> tuple[bytes, bool]:
     Reads as little as decides the question, so that a live pipe is not held back for long.
     """
     sample = b""
+    regular = rereadable(inp)  # (a live feed is judged on what came: it is not held for a tree's 64 KiB)
     while True:
-        part = inp.stream.read1(SNIFF_BYTES) if hasattr(inp.stream, "read1") else inp.stream.read(SNIFF_BYTES)
+        wanted = max(SNIFF_BYTES, len(sample))  # (doubling: a long undecided text is judged a few times, not each 512 B)
+        part = inp.stream.read1(wanted) if hasattr(inp.stream, "read1") else inp.stream.read(wanted)
         if not part:
             return sample, True
         sample += part
@@ -170,7 +172,8 @@ def _sniff(inp: Input) -> tuple[bytes, bool]:
             text = _text_of(sample, False)
             if text is None or not _is_text(text[1]):
                 break
-        if (sample.count(b"\n") >= SNIFF_LINES or len(sample) >= SNIFF_BYTES) and not _comments_only(sample):
+        if (sample.count(b"\n") >= SNIFF_LINES or len(sample) >= SNIFF_BYTES) and not _comments_only(sample) \
+                and not (regular and _undecided(sample)):
             break
     return sample, False
 
@@ -182,6 +185,20 @@ def _comments_only(sample: bytes) -> bool:
     body = text[1] if text is not None else sample
     return (len(sample) < SNIFF_COMMENTS and _is_text(body)
             and all(not line.strip() or line.lstrip().startswith(b"#") for line in body.split(b"\n")))
+
+
+def _undecided(sample: bytes) -> bool:
+    """Text in no format we read so far, and room to read on: a packet's details before its bytes (tshark -V -x,
+    Wireshark's Export Packet Dissections as plain text, saved to a file) put the first dump line a whole tree
+    (~1 KB) in."""
+    if len(sample) >= SNIFF_COMMENTS:
+        return False
+    text = _text_of(sample, False)
+    body = text[1] if text is not None else sample
+    if not _is_text(body):
+        return False
+    format, warning = detect_format(body, False)
+    return format == "raw" and warning is not None
 
 
 class Source:

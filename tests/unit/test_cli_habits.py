@@ -198,7 +198,8 @@ def test_the_simulator_runs_as_a_package() -> None:
         (["--bogus"], "unrecognized arguments: --bogus"),
         (["-c", "0"], "argument -c/--count: '0' must be more than 0"),
         (["--color", "maybe"], "argument --color: invalid choice: 'maybe' (choose from 'auto', 'always', 'never')"),
-        (["-t", "x"], "argument -t: invalid choice: 'x' (choose from 'r', 'a', 'ad', 'd', 'dd', 'e', 'u', 'ud')"),
+        (["-t", "x"], "argument -t: invalid choice: 'x' (choose from 'r', 'a', 'ad', 'adoy', 'd', 'dd', 'e', 'u', 'ud', "
+                       "'udoy')"),
     ],
 )
 def test_usage_errors_are_one_line_with_status_2(argv: list[str], message: str) -> None:
