@@ -6,6 +6,7 @@ contradict each other refused in one line rather than one of them silently dropp
 from __future__ import annotations
 
 import argparse
+import os
 from dataclasses import dataclass
 
 from dissector import __version__
@@ -305,12 +306,17 @@ def decode_options(args: argparse.Namespace) -> DecodeOptions:
 # itself: live_options.GivenBytesize): a file's line is --baud's, its characters the mode's (11 bits RTU,
 # 10 ASCII), so a typed format is refused there rather than silently left out of the bus timing.
 PORT_FORMAT = ("parity", "stopbits")
+TWO_PASS = "-2"  # tshark's two-pass option (parse_arguments)
 
 
 def parse_arguments(parser: argparse.ArgumentParser, argv: list[str] | None) -> argparse.Namespace:
     """parser.parse_args(argv); `port_format`: the frame format options typed (--parity, --stopbits,
     --bytesize), the others at their defaults."""
     args = parser.parse_args(argv, argparse.Namespace(**dict.fromkeys(PORT_FORMAT)))
+    # tshark's -2 (two passes) is how vw3-decode always reads a file (profile auto and pairing see all of it
+    # first): taken and ignored, as users type it. argparse reads it as a FILE (no option looks negative);
+    # a file named -2 stays one.
+    args.files = [name for name in args.files if name != TWO_PASS or os.path.lexists(name)]
     args.port_format = [f"--{dest}" for dest in PORT_FORMAT if getattr(args, dest) is not None]
     args.port_format += ["--bytesize"] if getattr(args, BYTESIZE_GIVEN, False) else []
     for dest in PORT_FORMAT:
