@@ -69,9 +69,17 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
             again = (lambda files=files, bus=bus: _open_input(files, bus, args, None)) \
                 if all(map(rereadable, files)) else None
             units = time_units(source, buses, bus, path, args.format)
-            yield ((title if several or bus is not None else None), chunks, source.mode, source.take_warnings,
+            take_warnings = _named(source.take_warnings, shown_name, path) if several else source.take_warnings
+            yield ((title if several or bus is not None else None), chunks, source.mode, take_warnings,
                    lambda source=source: source.recorded_until, timed, None, (path, source.format), bus,
                    again, units)
+
+
+def _named(take_warnings: Callable[[], list[str]], name: str, path: str) -> Callable[[], list[str]]:
+    """Several captures: a warning (`record 2: only 5 of its 11 bytes were captured`) names its file, as the
+    ==> title over its items does (a several-interface file's record warnings name it already: pcapng.py)."""
+    return lambda: [warning if warning.startswith((f"{name}: ", f"{path}: ")) else f"{name}: {warning}"
+                    for warning in take_warnings()]
 
 
 def time_units(source: Any, buses: list[PacketInterface], bus: PacketInterface | None, path: str,
