@@ -287,7 +287,7 @@ def _profile_table(profile: Any, rows: dict[int, Any]) -> dict[str, Any]:
         "title": profile.title,
         "device": profile.device,
         "address_style": profile.address_style,
-        # (FC4 reads the holding registers: a reference map's 3X rows join its 4X rows, device.lua layered_rows)
+        # (FC4 reads the holding registers: a reference map's 3X rows join its 4X rows, lua/src/device.lua)
         "one_table": profile.input_registers == "holding",
         "functions": profile.functions,
         "inner_only": profile.inner_only,

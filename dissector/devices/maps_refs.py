@@ -71,7 +71,9 @@ class ReferenceCheck:
 
     def __init__(self, paths: list[str], layers: list[MapLayer]) -> None:
         # (a layer whose highest address is below every base could never match: not judged)
-        self.layers = [(path, layer, max([*layer.rows, *getattr(layer.rows, "inputs", ())], default=-1)) for path, layer in zip(paths, layers)]
+        # (a map in references' 3X rows counted: ReferenceRows.inputs)
+        self.layers = [(path, layer, max([*layer.rows, *getattr(layer.rows, "inputs", ())], default=-1))
+                       for path, layer in zip(paths, layers)]
         self.frames: dict[int, int] = {}  # slave -> frames with registers judged
         self.tallies: dict[tuple[int, int], _Tally] = {}
         self.said: list[str] = []

@@ -368,7 +368,8 @@ def _read(name: str, given: dict[str, str], read: Callable[[], Any]) -> dict[str
     # (a map in references' 3X rows after its 4X rows, `table` "input": ReferenceRows.inputs)
     inputs = sorted(getattr(rows, "inputs", {}).items())
     return {"name": name, **given, "rows": [
-        {**({"table": "input"} if table else {}), "address": address, "code": row.code, "name": row.name, "unit": row.unit, "scale": row.scale,
+        {**({"table": "input"} if table else {}),
+         "address": address, "code": row.code, "name": row.name, "unit": row.unit, "scale": row.scale,
          "decimals": row.decimals, "enum": {str(k): v for k, v in row.enum.items()},
          "bits": {str(k): v for k, v in row.bits.items()}, "signed": row.signed, "words": row.words,
          "type": row.kind if row.words == 2 else None, "swapped": row.swapped, "source": row.source,
