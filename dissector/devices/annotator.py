@@ -25,7 +25,7 @@ from dissector.devices.memory import (
 )
 from dissector.devices.naming import name_from_map, name_register, name_second_alone, name_wide, plc_label, wide_before
 from dissector.devices.objects import check_objects
-from dissector.devices.profiles import Profile
+from dissector.devices.profiles import HOLDING_REGISTERS, Profile
 from dissector.devices.selection import ProfileChoice, Selector
 from dissector.devices.story import Event, tell
 from dissector.model import DeviceObject, Frame, Kind, Register, RegisterList
@@ -332,14 +332,14 @@ class Annotator:
                     register.status = "ok"
         return fresh
 
-    def namer(self, slave: int, function: int = 3) -> Callable[[int, int], tuple[str | None, str | None]]:
-        """(address, value) -> (text, code) of a register of `function`'s table as the slave's device names
-        it now, as plain_register does (--stats asks it for the last value of a parameter, at the end)."""
-        rows = self.device(slave).rows_for(function)
+    def namer(self, slave: int) -> Callable[..., tuple[str | None, str | None]]:
+        """(address, value, table) -> (text, code) of a register of the table (profiles.register_table's) as
+        the slave's device names it now, as plain_register does (--stats asks it for a last value)."""
+        device = self.device(slave)
 
-        def name(address: int, value: int) -> tuple[str | None, str | None]:
+        def name(address: int, value: int, table: int = HOLDING_REGISTERS) -> tuple[str | None, str | None]:
             register = Register(address, value)
-            row = rows.get(address)
+            row = device.table_rows(table).get(address)
             if row is not None:
                 if row.words != 1:  # one word of a 32-bit value: its text needs the other word
                     return None, row.code

@@ -564,12 +564,12 @@ class History:
         """The slave's namer, reading a 32-bit row's kept value (a word pair) as the row does."""
         if self._device is None or not self._device(slave).wide:
             return namer
-        rows = self._device(slave).rows
+        device = self._device(slave)
 
-        def name(address: int, value: int) -> Any:
-            row = rows.get(address)
+        def name(address: int, value: int, table: int = 0) -> Any:  # (table: the parameter's, HOLDING 0)
+            row = device.table_rows(table).get(address)
             if row is None or row.words != 2:
-                return namer(address, value)
+                return namer(address, value, table) if table else namer(address, value)
             return wide_text(row, value)[1], row.code
 
         return name
