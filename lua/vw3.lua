@@ -201,6 +201,9 @@ local DATA = {
     ["required"] = { "address", "code" },
     ["reference"] = "reference",
     ["reference_bases"] = { 40001, 30001 },
+    ["input_functions"] = {
+      [4] = true,
+    },
     ["max_bytes"] = 16777216,
     ["scale_min"] = 1e-12,
     ["scale_max"] = 1000000000000.0,
@@ -442,8 +445,8 @@ local DATA = {
         ["repr"] = {},
       },
       ["reference_twice"] = {
-        ["format"] = "reference %s is address %d, as %s on line %d: a map names each address once, 3X and 4X alike",
-        ["params"] = { "text", "address", "first", "line" },
+        ["format"] = "reference %s is %s register %d, as %s on line %d: a map names each register once",
+        ["params"] = { "text", "table", "address", "first", "line" },
         ["repr"] = {
           ["text"] = true,
           ["first"] = true,
@@ -2490,6 +2493,7 @@ local DATA = {
       ["title"] = "Altivar 71 (VW3 A3 303 Modbus card)",
       ["device"] = "VW3 A3 303",
       ["address_style"] = "protocol",
+      ["one_table"] = true,
       ["functions"] = {
         [3] = true,
         [4] = true,
@@ -3168,6 +3172,7 @@ local DATA = {
       ["title"] = "SEL-749M motor protection relay",
       ["device"] = "SEL-749M",
       ["address_style"] = "plc",
+      ["one_table"] = false,
       ["functions"] = {
         [3] = true,
         [4] = true,
@@ -3313,6 +3318,7 @@ local DATA = {
       ["title"] = "Generic Modbus device (spec semantics only)",
       ["device"] = "device",
       ["address_style"] = "protocol",
+      ["one_table"] = false,
       ["functions"] = nil,
       ["inner_only"] = {},
       ["broadcast"] = nil,
@@ -6899,7 +6905,8 @@ local function map_reference(text)
   wrong("reference", { text = text })
 end
 
--- The rows read from a map written in PLC references (maps.ReferenceRows), for the reference check's note.
+-- The rows read from a map written in PLC references (maps.ReferenceRows), for the reference check's note,
+-- -> its 3X rows (ReferenceRows.inputs: input registers, FC4's), kept apart from its 4X rows.
 local reference_rows = setmetatable({}, { __mode = "k" })
 
 local function map_pairs(text, what)
@@ -7022,9 +7029,10 @@ local function read_map(text, origin)
     end
   end
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
-  local header, rows, first_line, order, delimiter, number = nil, {}, {}, {}, ",", 0
-  local named = {} -- (code, ASCII case folded as --watch matches it -> its address)
-  local references = {} -- (address -> the reference that named it first: maps.py reference_twice)
+  local header, rows, order, delimiter, number = nil, {}, {}, ",", 0
+  local named = {} -- (code, ASCII case folded as --watch matches it -> { its table, its address })
+  local references = {} -- (table -> address -> the reference that named it first: maps.py reference_twice)
+  local lines = {} -- (table -> address -> its line: the rows, or a reference map's 3X rows)
   -- (lines end where str.splitlines ends them: \r\n, \r, \n, \v, \f, \x1c-\x1e, U+0085, U+2028, U+2029)
   text = text:gsub("\r\n", "\n"):gsub("[\r\v\f\28-\30]", "\n")
   text = text:gsub("\194\133", "\n"):gsub("\226\128[\168\169]", "\n")
@@ -7046,7 +7054,7 @@ local function read_map(text, origin)
         end
         if named[REFERENCE] then
           if named.address then wrong("reference_and_address") end
-          reference_rows[rows] = true
+          reference_rows[rows] = {}
         end
         for _, required in ipairs(FORMAT.required) do
           if not named[required] and not (required == "address" and named[REFERENCE]) then
@@ -7067,28 +7075,32 @@ local function read_map(text, origin)
         local reference = values[REFERENCE] ~= nil and strip(values[REFERENCE]) or nil
         if reference ~= nil then values.address = format("%d", map_reference(reference)) end
         local address, row = map_row(values)
-        if rows[address] ~= nil and reference ~= nil then
-          wrong("reference_twice", { text = reference, address = address, first = references[address],
-            line = first_line[address] })
+        local input = reference ~= nil and reference:sub(1, 1) == "3"
+        local into = input and reference_rows[rows] or rows
+        lines[into], references[into] = lines[into] or {}, references[into] or {}
+        if into[address] ~= nil and reference ~= nil then
+          wrong("reference_twice", { text = reference, table = input and "input" or "holding", address = address,
+            first = references[into][address], line = lines[into][address] })
         end
-        if rows[address] ~= nil then wrong("address_twice", { address = address, line = first_line[address] }) end
-        references[address] = reference
+        if into[address] ~= nil then wrong("address_twice", { address = address, line = lines[into][address] }) end
+        references[into][address] = reference
         local first = named[row.code:upper()]
         if first ~= nil then
-          wrong("code_twice", { code = row.code, address = first, line = first_line[first] })
+          wrong("code_twice", { code = row.code, address = first[2], line = lines[first[1]][first[2]] })
         end
-        named[row.code:upper()] = address
-        rows[address], first_line[address] = row, number
-        order[#order + 1] = address
+        named[row.code:upper()] = { into, address }
+        into[address], lines[into][address] = row, number
+        order[#order + 1] = { into, address }
       end
     end
   end
   -- (a 32-bit row's second register defined as a row of its own: told once the file is read, rows in order)
-  for _, first in ipairs(order) do
-    local row, second = rows[first], first + 1
-    if row.words == 2 and rows[second] ~= nil then
-      line_read = format("%s:%d: ", origin, first_line[second])
-      wrong("second_register", { address = second, code = row.code, kind = row.kind, line = first_line[first] })
+  for _, key in ipairs(order) do
+    local into, first = key[1], key[2]
+    local row, second = into[first], first + 1
+    if row.words == 2 and into[second] ~= nil then
+      line_read = format("%s:%d: ", origin, lines[into][second])
+      wrong("second_register", { address = second, code = row.code, kind = row.kind, line = lines[into][first] })
     end
   end
   line_read = origin .. ": "
@@ -7141,10 +7153,14 @@ local function parse_map_choice(text, profile_names)
         errors[#errors + 1] = problem
       else
         -- (name, high: what check_references in lua/src/device.lua reads: the file as given, its highest address)
-        local high = -1
-        for address in pairs(rows) do high = math.max(high, address) end
+        -- (inputs: a map in references' 3X rows, nil when it has none: its rows then name either table)
+        local high, inputs = -1, reference_rows[rows]
+        if inputs ~= nil and next(inputs) == nil then inputs = nil end
+        for _, table in ipairs({ rows, inputs or {} }) do
+          for address in pairs(table) do high = math.max(high, address) end
+        end
         layers[#layers + 1] = { rows = rows, slave = slave, profile = not slave and target or nil,
-          name = printable(path), high = high, references = reference_rows[rows] == true }
+          name = printable(path), high = high, references = reference_rows[rows] ~= nil, inputs = inputs }
       end
     end
   end
@@ -7153,6 +7169,8 @@ end
 
 -- (for the conformance runner, which reads map texts: the modules read files, load_map)
 M.parse_map = parse_map
+-- (a map in references' 3X rows, as the conformance runner compares them: maps.ReferenceRows.inputs)
+function M.map_inputs(rows) return reference_rows[rows] end
 M.AUTO, M.MESSAGES, M.PLAIN_READS, M.PROFILES, M.READS = AUTO, MESSAGES, PLAIN_READS, PROFILES, READS
 M.READ_LIMIT, M.SELECTION, M.parse_map_choice = READ_LIMIT, SELECTION, parse_map_choice
 M.parse_profile_choice, M.python_repr = parse_profile_choice, python_repr
@@ -7220,23 +7238,45 @@ local function copied(t)
   return copy
 end
 
--- A profile's map with the map layers given at run time laid over it, those for which applies(layer).
+-- maps.overlay: `rows` with a layer's rows `mine` laid over it, in place (a layer row hides every row it
+-- overlaps, a 32-bit row's two registers counted).
+local function overlay(rows, mine)
+  for address, row in pairs(mine) do
+    local before = rows[address - 1]
+    if before ~= nil and before.words == 2 and mine[address - 1] == nil then rows[address - 1] = nil end
+    if row.words == 2 and mine[address + 1] == nil then rows[address + 1] = nil end
+  end
+  for address, row in pairs(mine) do rows[address] = row end
+end
+
+-- A profile's map with the map layers given at run time laid over it, those for which applies(layer); and
+-- the rows of its input registers apart (DeviceBuilder.build: a layer in PLC references with 3X rows on a
+-- device whose FC4 reads a table of its own), nil when the rows name them too. Where FC4 reads the holding
+-- registers (profile one_table, the ATV71), a layer's 3X rows join its 4X rows, a 4X row winning.
 local function layered_rows(profile, applies)
-  if #config.layers == 0 then return profile.map or {} end
-  local rows = copied(profile.map or {})
+  if #config.layers == 0 then return profile.map or {}, nil end
+  local rows, inputs, split = copied(profile.map or {}), copied(profile.map or {}), false
   for _, layer in ipairs(config.layers) do
     if applies(layer) then
-      -- (maps.overlay: a layer row hides every row it overlaps, a 32-bit row's two registers counted)
-      local mine = layer.rows
-      for address, row in pairs(mine) do
-        local before = rows[address - 1]
-        if before ~= nil and before.words == 2 and mine[address - 1] == nil then rows[address - 1] = nil end
-        if row.words == 2 and mine[address + 1] == nil then rows[address + 1] = nil end
+      local extra = layer.inputs
+      if extra ~= nil and profile.one_table then
+        overlay(rows, extra)
+        overlay(rows, layer.rows)
+      else
+        overlay(rows, layer.rows)
+        overlay(inputs, extra or layer.rows)
+        split = split or extra ~= nil
       end
-      for address, row in pairs(mine) do rows[address] = row end
     end
   end
-  return rows
+  return rows, split and inputs or nil
+end
+
+-- The rows naming the registers a function code reads or writes (Device.rows_for): its table's.
+local INPUT_FUNCTIONS = DATA.map_format.input_functions
+local function rows_for(device, fn)
+  if device.inputs ~= nil and INPUT_FUNCTIONS[fn] then return device.inputs end
+  return device.rows
 end
 
 -- A map written in PLC references (maps_refs.py, message for message): judged on a slave's first
@@ -7303,10 +7343,11 @@ local function check_references(f, device)
   refs.frames = refs.frames + 1
   if refs.frames >= REFERENCES_JUDGED then device.refs_open = false end
   local base = reference_base(device.profile, f.fn)
-  local rows, start = device.rows, registers.start
+  local rows, start = rows_for(device, f.fn), registers.start
   for _, judged in ipairs(refs.layers) do
     if not judged.done and start ~= nil then
       local mine, counts = judged.layer.rows, judged.counts
+      if judged.layer.inputs ~= nil and rows == device.inputs then mine = judged.layer.inputs end
       for index = 0, registers.count - 1 do
         local address = (start + index) % 0x10000
         local key = base * 65536 + address
@@ -7337,7 +7378,7 @@ end
 -- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own
 -- parameter memory (a new profile for a slave starts a new memory, as the annotator builds a new Device).
 local function build_device(profile, slave)
-  local rows = layered_rows(profile, function(layer)
+  local rows, inputs = layered_rows(profile, function(layer)
     return (layer.slave == nil or layer.slave == slave) and (layer.profile == nil or layer.profile == profile.name)
   end)
   local depend, plain = {}, {}
@@ -7353,7 +7394,7 @@ local function build_device(profile, slave)
   end
   local style = config.style or profile.address_style
   local device = { profile = profile, rows = rows, depend = depend, plain = plain, plc_default = profile.plc_base_default,
-    seen = {} }
+    seen = {}, inputs = inputs }
   -- Parameters are followed only where it tells something: protection, or bits that depend on a value.
   device.track = profile.protected_value ~= nil or next(depend) ~= nil
   if style == "plc" then device.plc = profile.plc_base or {} end
@@ -7498,7 +7539,7 @@ end
 M.PLC_LABELS, M.address_name, M.address_runs, M.build_device = PLC_LABELS, address_name, address_runs, build_device
 M.check_references, M.consecutive, M.copied, M.device_for = check_references, consecutive, copied, device_for
 M.device_of, M.has_note, M.interpret, M.interpret_wide = device_of, has_note, interpret, interpret_wide
-M.layered_rows, M.span_name = layered_rows, span_name
+M.layered_rows, M.rows_for, M.span_name = layered_rows, rows_for, span_name
 end
 
 -- ---- vw3.story: lua/src/story.lua ----
@@ -7510,7 +7551,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local PLC_LABELS, address_name, address_runs, concat = PLC_LABELS, address_name, address_runs, concat
 local consecutive, has_note, interpret, interpret_wide = consecutive, has_note, interpret, interpret_wide
-local ipairs, math, next, note, say, span_name, table = ipairs, math, next, note, say, span_name, table
+local ipairs, math, next, note, rows_for, say, span_name = ipairs, math, next, note, rows_for, say, span_name
+local table = table
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
@@ -7645,8 +7687,9 @@ local MARKER_TEXTS = { ["non-existent"] = say("marker_non_existent", {}), protec
 -- One register of a frame, in capture order: is it read with its plain layout (a bits_depend rule), and
 -- its 16#8000 status (nil: the profile has none, or this is no read). Notes and the story go on.
 local function annotate_one(f, device, address, value, protected, multi, label, words)
-  local row = device.rows[address]
-  local rule = story.plain_rule(device, address, row)
+  local rows = rows_for(device, f.fn) -- (FC4's: a map in references' 3X rows, where they are apart)
+  local row = rows[address]
+  local rule = rows == device.rows and story.plain_rule(device, address, row) or nil -- (rules: holding's)
   if rule ~= nil and not has_note(f, rule.reason) then note(f, rule.reason) end
   local status = nil
   if protected ~= nil then
@@ -7654,7 +7697,7 @@ local function annotate_one(f, device, address, value, protected, multi, label, 
     -- (a word of a 32-bit value is no parameter on its own)
     if value == protected and multi and words == 1 then
       if row == nil then -- (a 32-bit value's second word alone: that value's 16#8000, as its first's)
-        status = rows_before(device.rows, address) and "ambiguous" or "non-existent"
+        status = rows_before(rows, address) and "ambiguous" or "non-existent"
       else
         status = row.ambiguous_8000 and "ambiguous" or "protected"
       end
@@ -7692,7 +7735,7 @@ end
 -- the next word, when words is 2) and PLC label (`labels`: frame_labels', nil to find them), from the plain
 -- layout flag (a bits_depend rule) and its status: maps.interpret / interpret_wide, then the 16#8000 texts.
 local function describe(device, f, reg, plain, status, words, second, labels)
-  local rows, address, value = device.rows, reg.address, reg.value
+  local rows, address, value = rows_for(device, f.fn), reg.address, reg.value
   local row = rows[address]
   local named, scaled, text = row, nil, nil
   if row ~= nil then -- (nested: most registers of a frame have no row, and each test here is paid per register)
@@ -7734,7 +7777,7 @@ local function annotate_registers(f, device, run, b, read)
   -- Nothing to follow: no 16#8000 story, no layout that depends on another register.
   if protected == nil and next(device.depend) == nil then return end
   local base = plc_base(device, f)
-  local rows = device.rows
+  local rows = rows_for(device, f.fn)
   for index = 0, count - 1 do
     local k = first + 2 * index
     local address = (start + index) % 0x10000
@@ -7768,8 +7811,8 @@ local DATA, LIFT_OF, NOT_BROADCAST, PLAIN_READS, PLC_LABELS = DATA, LIFT_OF, NOT
 local READS, READ_LIMIT, REQUEST, RESPONSE, address_name = READS, READ_LIMIT, REQUEST, RESPONSE, address_name
 local address_runs, concat, consecutive, format = address_runs, concat, consecutive, format
 local function_name, ipairs, lane, math, next, note = function_name, ipairs, lane, math, next, note
-local plc_base, say, span_name, story, tonumber, track = plc_base, say, span_name, story, tonumber, track
-local trusted_request, u16, verified, warn = trusted_request, u16, verified, warn
+local plc_base, rows_for, say, span_name, story, tonumber = plc_base, rows_for, say, span_name, story, tonumber
+local track, trusted_request, u16, verified, warn = track, trusted_request, u16, verified, warn
 
 -- Each quantity request f's lifting rule checks (FC23: read and write, as the spec's checks name them; without
 -- its fields, as vw3_modbus.lua remembers a request, its quantity) with the device's limit for it (nil: none):
@@ -7821,7 +7864,7 @@ local READ_ONLY = "R" -- the access of a parameter no write changes (devices/acc
 local NONE = {} -- (read only, never changed: a device without a read-only row has none to name)
 local function written_read_only(f, device)
   if not device.read_only then return NONE end -- (no list of the addresses written made for nothing)
-  local rows, named, code, addresses = device.rows, {}, f.fn, {}
+  local rows, named, code, addresses = rows_for(device, f.fn), {}, f.fn, {}
   local run = f.registers
   if REGISTER_WRITES.echo[code] or REGISTER_WRITES.answer[code] then
     if run ~= nil and run.start ~= nil and run.count ~= nil then
@@ -7899,7 +7942,7 @@ local function refused_registers(device, request)
   local base, out = plc_base(device, request), {}
   for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
     local address = (request.start + index) % 0x10000
-    local row = device.rows[address]
+    local row = rows_for(device, request.fn)[address]
     out[index + 1] = { address = address, row = row, status = row == nil and "non-existent" or "protected",
       label = base and PLC_LABELS[base][address] }
   end
@@ -8391,7 +8434,7 @@ local check_writes, describe, device_of, diagnostics_note = check_writes, descri
 local explain_exception, explain_objects, frame_labels = explain_exception, explain_objects, frame_labels
 local ipairs, lane, pairs, parse_map_choice = ipairs, lane, pairs, parse_map_choice
 local parse_profile_choice, refused_registers, register_at = parse_profile_choice, refused_registers, register_at
-local remember_mask, remember_writes, say, select = remember_mask, remember_writes, say, select
+local remember_mask, remember_writes, rows_for, say, select = remember_mask, remember_writes, rows_for, say, select
 local span_label, track, trusted_request, verified = span_label, track, trusted_request, verified
 local words_at = words_at
 
@@ -8515,7 +8558,7 @@ local function register_view(st, f, run, b, index)
   local view = { address = address, value = value, offset = offset }
   if device and address ~= nil then
     local status = run.status and run.status[index] or shown_ok
-    local words, second = words_at(device.rows, address, index, run.count), nil
+    local words, second = words_at(rows_for(device, f.fn), address, index, run.count), nil
     if words == 2 and b ~= nil then second = select(2, register_at(run, b, index + 1, true)) end
     describe(device, f, view, run.plain and run.plain[index], status, words, second, shown_labels)
   end
@@ -8975,7 +9018,8 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   if bits and quantity % 8 > 0 and byte(bytes, 3 + count) >= 2 ^ (quantity % 8) then return nil end
   -- annotate_with: nothing but the registers' bookkeeping
   local device = device_for(st, slave)
-  if not device or device.refs_open then return nil end -- (its frames judged: check_references, take_frame)
+  -- (its frames judged: check_references, take_frame; input rows apart: named by their table there)
+  if not device or device.refs_open or device.inputs ~= nil then return nil end
   local profile = device.profile
   if profile.function_names[code] ~= nil then return nil end
   -- annotate_registers: every register the usual one (not 16#8000, under no layout rule, read before with a
@@ -9082,7 +9126,7 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
     if known == nil or known.length ~= n then return nil end
   end
   local device = known.device
-  if device_for(st, slave) ~= device or device.refs_open then return nil end
+  if device_for(st, slave) ~= device or device.refs_open or device.inputs ~= nil then return nil end
   if own then
     local registers = known.registers
     if registers ~= nil and next(device.depend) ~= nil then
@@ -9425,8 +9469,8 @@ local MASK_WRITES, NO_INTERPRETATION, PARAMETER_FIELDS = MASK_WRITES, NO_INTERPR
 local REQUEST, concat, describe, device_of, ex = REQUEST, concat, describe, device_of, ex
 local exception_name, floor, format, function_name, hex_of = exception_name, floor, format, function_name, hex_of
 local hex_pairs, ipairs, made_once, math, pf = hex_pairs, ipairs, made_once, math, pf
-local printable_ascii, python_repr, say, string, table = printable_ascii, python_repr, say, string, table
-local tostring, u16, words_at = tostring, u16, words_at
+local printable_ascii, python_repr, rows_for, say, string = printable_ascii, python_repr, rows_for, say, string
+local table, tostring, u16, words_at = table, tostring, u16, words_at
 
 -- `1 byte`, `2 bytes`: a count and its noun, singular for one (describe.count_text).
 local function count_text(count, noun)
@@ -9829,7 +9873,7 @@ local function single_text(f, st, device, value)
   local run = f.registers
   if device ~= nil and run ~= nil and run.count > 0 and run.start ~= nil then
     local reg = { address = run.start, value = value }
-    describe(device, f, reg, run.plain and run.plain[0], nil, words_at(device.rows, run.start, 0, run.count))
+    describe(device, f, reg, run.plain and run.plain[0], nil, words_at(rows_for(device, f.fn), run.start, 0, run.count))
     local code = reg.row and reg.row.code
     if code or reg.text then
       return " " .. (code or reg.label or DECIMAL[run.start]) .. "=" .. (reg.text or DECIMAL[value])

@@ -21,7 +21,7 @@ from typing import Any
 
 from dissector.codegen import fields_lua, lanes_lua, pack_lua, printable_table, timing_lua
 from dissector.decode import pairing
-from dissector.devices import access, maps
+from dissector.devices import access, maps, profiles
 from dissector.errors import GenerateError
 from dissector.framing import ascii as ascii_framer, evidence, rtu as framer, stream as streambuf
 from dissector.framing.rules import SILENCE_CUTS
@@ -126,6 +126,9 @@ def plugin_data() -> dict[str, Any]:
             "required": list(maps.REQUIRED),
             "reference": maps.REFERENCE,  # (the column a map written in PLC references has for `address`)
             "reference_bases": list(maps.REFERENCE_BASES),
+            # (the codes whose registers are input registers, a reference map's 3X rows: profiles.register_table)
+            "input_functions": frozenset(
+                code for code in range(256) if profiles.TABLES[code] == profiles.INPUT_REGISTERS),
             "max_bytes": maps.MAX_MAP_BYTES,
             "scale_min": maps.SCALE_MIN,
             "scale_max": maps.SCALE_MAX,
@@ -284,6 +287,8 @@ def _profile_table(profile: Any, rows: dict[int, Any]) -> dict[str, Any]:
         "title": profile.title,
         "device": profile.device,
         "address_style": profile.address_style,
+        # (FC4 reads the holding registers: a reference map's 3X rows join its 4X rows, lua/src/device.lua)
+        "one_table": profile.input_registers == "holding",
         "functions": profile.functions,
         "inner_only": profile.inner_only,
         "broadcast": profile.broadcast,

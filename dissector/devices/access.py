@@ -24,7 +24,7 @@ _MASK_WRITES = frozenset(code for code, how in CONFIRM.items() if how is Confirm
 def written_read_only(frame: Frame, device: Device) -> list[str]:
     """The read-only parameters a write request touches, named (`ETA (3201)`; a PLC-style device's
     reference: `SPD (40101)`), in address order."""
-    rows = device.rows
+    rows = device.rows_for(frame.function)  # (writes: the holding registers)
     if not rows:
         return []
     function = frame.function

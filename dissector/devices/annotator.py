@@ -25,7 +25,7 @@ from dissector.devices.memory import (
 )
 from dissector.devices.naming import name_from_map, name_register, name_second_alone, name_wide, plc_label, wide_before
 from dissector.devices.objects import check_objects
-from dissector.devices.profiles import Profile
+from dissector.devices.profiles import HOLDING_REGISTERS, Profile
 from dissector.devices.selection import ProfileChoice, Selector
 from dissector.devices.story import Event, tell
 from dissector.model import DeviceObject, Frame, Kind, Register, RegisterList
@@ -189,11 +189,11 @@ class Annotator:
         return slave == 0 and self.selector is not None and 0 not in self.per_slave
 
     def compilable(self, slave: int) -> bool:
-        """The compiled path may show this slave's plain transactions: its profile is settled, and its
-        map has no 32-bit rows (a register's text would depend on its neighbour's value)."""
+        """The compiled path may show this slave's plain transactions: a settled profile, no 32-bit rows."""
         if self._inferred_broadcast(slave):
             return False  # (named with the device of the slaves met so far: _broadcast)
-        return self.settled(slave) and not self.device(slave).wide and not any(hold(slave) for hold in self.holds)
+        device = self.device(slave)  # (input rows apart too: the engine knows one map a slave)
+        return self.settled(slave) and not (device.wide or device.inputs) and not any(h(slave) for h in self.holds)
 
     # -- setup ----------------------------------------------------------------------------------------
     def device(self, slave: int) -> Device:
@@ -236,7 +236,7 @@ class Annotator:
         """Every parameter code (upper case) a slave may have in this run -> its addresses: the rows of
         every profile in use or that `auto` may choose, and of the --map files (what --watch may name)."""
         maps = [self._builder.build(profile, None).rows for profile in self.profiles()]
-        maps += [layer.rows for layer in self.layers]
+        maps += [table for layer in self.layers for table in (layer.rows, getattr(layer.rows, "inputs", {}))]
         found: dict[str, set[int]] = {}
         for rows in maps:
             for address, row in rows.items():
@@ -278,7 +278,7 @@ class Annotator:
         device = self.device(slave)
         if device.plc is not None:
             register.label = plc_label(device.plc.get(function, device.plc_default), address)
-        row = device.rows.get(address)
+        row = device.rows_for(function).get(address)
         if row is not None:
             name_register(register, row, row)
         return register
@@ -311,7 +311,7 @@ class Annotator:
             return registers
         plc = None if device.plc is None else device.plc.get(function, device.plc_default)
         fresh = [Register(register.address, register.value) for register in registers]
-        rows = device.rows
+        rows = device.rows_for(function)
         for index, register in enumerate(fresh):
             address = register.address
             if address is None or register.value is None:
@@ -332,14 +332,14 @@ class Annotator:
                     register.status = "ok"
         return fresh
 
-    def namer(self, slave: int) -> Callable[[int, int], tuple[str | None, str | None]]:
-        """(address, value) -> (text, code) of a register as the slave's device names it now, as
-        plain_register does (--stats asks it for the last value of a parameter, at the end)."""
-        rows = self.device(slave).rows
+    def namer(self, slave: int) -> Callable[..., tuple[str | None, str | None]]:
+        """(address, value, table) -> (text, code) of a register of the table (profiles.register_table's) as
+        the slave's device names it now, as plain_register does (--stats asks it for a last value)."""
+        device = self.device(slave)
 
-        def name(address: int, value: int) -> tuple[str | None, str | None]:
+        def name(address: int, value: int, table: int = HOLDING_REGISTERS) -> tuple[str | None, str | None]:
             register = Register(address, value)
-            row = rows.get(address)
+            row = device.table_rows(table).get(address)
             if row is not None:
                 if row.words != 1:  # one word of a 32-bit value: its text needs the other word
                     return None, row.code
@@ -448,8 +448,8 @@ class Annotator:
     def _annotate(
         self, frame: Frame, device: Device, registers: Sequence[Register], read: bool, events: list[Event]
     ) -> None:
-        rows = device.rows
-        depend = device.depend
+        rows = device.rows_for(frame.function)
+        depend = device.depend if rows is device.rows else {}  # (bits_depend rules name holding registers)
         labels: dict[int, str] | None = None
         base = 0
         if device.plc is not None and _HAS_LABEL:

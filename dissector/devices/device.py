@@ -8,8 +8,10 @@ import dataclasses
 import functools
 from dataclasses import dataclass, field
 
-from dissector.devices.maps import RegisterDef, RegisterMap, overlay
-from dissector.devices.profiles import INPUT_REGISTERS, BitsDepend, Profile, load_profile_map, register_table
+from dissector.devices.maps import ReferenceRows, RegisterDef, RegisterMap, overlay
+from dissector.devices.profiles import (
+    INPUT_REGISTERS, TABLES, BitsDepend, Profile, load_profile_map, register_table,
+)
 
 # What the annotator last knew of a parameter: (value, frame number, how). value None: unreadable
 # (how is then its status); how "read" or "written" otherwise. Plain tuples: this is the hot path.
@@ -47,12 +49,23 @@ class Device:
     # "separate": input register 5 is not holding register 5); None: FC4 reads the holding registers, `seen`.
     input_seen: dict[int, Seen] | None = None
     labels: dict[int, dict[int, str]] = field(default_factory=dict)
+    # The rows naming the input registers (FC4's) apart from `rows`: a --map in PLC references with 3X rows
+    # on a device whose input registers are a table of their own; None: `rows` name FC4's registers too.
+    inputs: RegisterMap | None = None
     # Exception explanations depend on the request's bytes alone: a PLC that polls a protected block
     # draws the same exception again and again.
     explained: dict[object, object] = field(default_factory=dict)
 
     def base(self, function: int) -> int:
         return self.plc.get(function, self.plc_default)  # type: ignore[union-attr]
+
+    def rows_for(self, function: int) -> RegisterMap:
+        """The rows naming the registers `function` reads or writes: its table's."""
+        return self.table_rows(TABLES[function])
+
+    def table_rows(self, table: int) -> RegisterMap:
+        """The rows naming the registers of a table (profiles.register_table's INPUT_REGISTERS, ...)."""
+        return self.inputs if self.inputs is not None and table == INPUT_REGISTERS else self.rows
 
     def memory(self, function: int) -> dict[int, Seen]:
         """The parameter memory of the registers `function` reads or writes: its table's."""
@@ -81,13 +94,24 @@ class DeviceBuilder:
         base = self._base_maps.get(profile.name)
         if base is None:
             base = self._base_maps[profile.name] = load_profile_map(profile)
-        rows = base
+        rows = inputs = base
+        split = False  # a layer in PLC references has 3X rows: FC4's registers named apart
+        one_table = profile.input_registers == "holding"
         for layer in self.layers:
             if layer.slave is not None and layer.slave != slave:
                 continue
             if layer.profile is not None and layer.profile != profile.name:
                 continue
+            extra = (layer.rows.inputs or None) if isinstance(layer.rows, ReferenceRows) else None
+            if extra and one_table:
+                # FC4 reads the holding registers (the ATV71): a 3X row names the register FC3 reads too,
+                # and where a 4X row of the layer names the same one, the 4X row wins.
+                rows = overlay(overlay(rows, extra), layer.rows)
+                continue
             rows = overlay(rows, layer.rows)  # (a copy: the base map is shared)
+            # An address map names a register whatever the table; a map in references, its 3X rows FC4's.
+            inputs = overlay(inputs, extra if extra is not None else layer.rows)
+            split = split or extra is not None
         depend: dict[int, BitsDepend] = {}
         plain: dict[int, RegisterDef] = {}
         for rule in profile.bits_depend:
@@ -106,7 +130,8 @@ class DeviceBuilder:
             plc_default=profile.plc_base_default,
             track=profile.protected_value is not None or bool(depend),
             unchecked=_unchecked(supported, profile.inner_only, frozenset(profile.limits)),
-            wide=any(row.words == 2 for row in rows.values()),
+            wide=any(row.words == 2 for table in (rows, inputs if split else {}) for row in table.values()),
+            inputs=inputs if split else None,
             input_seen=None if profile.input_registers == "holding" else {},
             limited={
                 function: limits

@@ -144,7 +144,7 @@ def _all_unreadable(frame: Frame, device: Device, request: Frame, events: list[E
     key = (request.function, request.start, request.quantity)
     known = device.explained.get(key)
     if known is None:
-        rows = device.rows
+        rows = device.rows_for(request.function)
         base = device.base(request.function) if device.plc is not None else None
         addresses = [
             (request.start + index) & 0xFFFF  # type: ignore[operator]
@@ -181,7 +181,7 @@ def _all_unreadable(frame: Frame, device: Device, request: Frame, events: list[E
 def all_unreadable_registers(frame: Frame, device: Device, request: Frame) -> list[Register]:
     """The registers of an exception 02 to a read on such a device, as _all_unreadable gives them,
     without a note or the parameter memory (Annotator.reread)."""
-    rows = device.rows
+    rows = device.rows_for(request.function)
     base = device.base(request.function) if device.plc is not None else None
     lost_ = []
     for index in range(min(request.quantity, READ_LIMIT)):  # type: ignore[type-var]

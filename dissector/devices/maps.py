@@ -39,6 +39,7 @@ from dissector.errors import ProfileError
 from dissector.devices.readfile import read_capped
 from dissector.protocol.printable import printable
 from dissector.protocol.rules import text as say_text
+import collections
 import csv
 import math
 import re
@@ -61,7 +62,8 @@ SEPARATORS = (",", ";", "\t")  # a map's separator: the one of these that splits
 REQUIRED = ("address", "code")
 # The column a map written in PLC references has in place of `address`, and the references' bases: 4X
 # (holding registers) and 3X (input registers), five digits (40001 + address up to 49999) or six (400001 +
-# address: naming.plc_label's rule, base * 10 - 9). A map names addresses whatever the table, as before.
+# address: naming.plc_label's rule, base * 10 - 9). 3X rows are kept apart (ReferenceRows.inputs): they
+# name FC4's input registers, 4X rows the holding registers (DeviceBuilder.build says where FC4 reads both).
 REFERENCE = "reference"
 REFERENCE_BASES = (40001, 30001)
 ACCESS = frozenset(["R", "W", "RW"])
@@ -119,10 +121,10 @@ MESSAGES = {
     "labels_quantity": "a register with {what} labels cannot carry a {column} (its value is a label)",
     "code_twice": "code {code} already names address {address:d} (line {line:d})",
     "reference_and_address": f"a map gives each row an address or a {REFERENCE}, not both",
-    # (two references of one address: 40002 and 400002, or a manual's 30001 and 40001, input and holding
-    # register 0; a map's rows are keyed by address alone, whatever the table)
-    "reference_twice": "reference {text!r} is address {address:d}, as {first!r} on line {line:d}: a map names "
-                       "each address once, 3X and 4X alike",
+    # (two references of one register: 40002 and 400002, or 30002 and 300002; a manual's 30001 and 40001
+    # are two registers, input and holding register 0)
+    "reference_twice": "reference {text!r} is {table} register {address:d}, as {first!r} on line {line:d}: a map "
+                       "names each register once",
     "reference": "reference {text!r} is not a 4X or 3X register reference (" + "; ".join(
         f"{base}..{base + 9998}, {base * 10 - 9}..{base * 10 - 9 + 0xFFFF}" for base in REFERENCE_BASES) + ")",
     # Not a line's error: what the traffic tells of a map written in PLC references (maps_refs.py, the
@@ -206,8 +208,18 @@ def reference_address(text: str) -> int:
     raise ValueError(_say("reference", text=text))
 
 
+def reference_table(text: str) -> str:
+    """The table a valid PLC reference names: "input" (3X) or "holding" (4X)."""
+    return "input" if text.strip(_SPACE)[:1] == "3" else "holding"
+
+
 class ReferenceRows(dict):  # type: ignore[type-arg]
-    """The rows of a map written in PLC references (its `reference` column): a RegisterMap by address."""
+    """The rows of a map written in PLC references (its `reference` column): a RegisterMap by address of
+    its 4X rows (holding registers), and `inputs`, its 3X rows (input registers, FC4's)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.inputs: RegisterMap = {}
 
 
 def _pairs(text: str, what: str, low: int, high: int) -> dict[int, str]:
@@ -354,10 +366,11 @@ def parse_map(text: str, origin: str) -> RegisterMap:
     text = text.removeprefix("\ufeff")  # the BOM Excel writes in "CSV UTF-8"
     delimiter = ","
     rows: RegisterMap = {}
-    first_line: dict[int, int] = {}
-    references: dict[int, str] = {}  # address -> the reference that named it first (a `reference` column's)
-    named: dict[str, int] = {}  # code, ASCII case folded as --watch matches it -> its address
-    wide: dict[int, int] = {}  # second register of a 32-bit row -> its first
+    # By table (id: the rows, or a reference map's inputs): address -> the line that named it
+    first_line: dict[int, dict[int, int]] = collections.defaultdict(dict)
+    references: dict[tuple[int, int], str] = {}  # (table, address) -> the reference that named it first
+    named: dict[str, tuple[int, int]] = {}  # code, ASCII case folded as --watch matches it -> (table, address)
+    wide: list[tuple[RegisterMap, int]] = []  # 32-bit rows: (their table, first register)
     for number, line in enumerate(text.splitlines(), start=1):
         stripped = line.strip(_SPACE)
         if not stripped or stripped.startswith("#"):
@@ -400,31 +413,37 @@ def parse_map(text: str, origin: str) -> RegisterMap:
             row = _row(values)
         except ValueError as error:
             raise ProfileError(f"{origin}:{number}: {error}") from None
-        if row.address in rows and row.address in references:
+        table = rows
+        if isinstance(rows, ReferenceRows) and reference_table(reference) == "input":
+            table = rows.inputs
+        lines = first_line[id(table)]
+        if row.address in table and isinstance(rows, ReferenceRows):
             raise ProfileError(f"{origin}:{number}: " + _say(
-                "reference_twice", text=reference, address=row.address, first=references[row.address],
-                line=first_line[row.address]))
-        if row.address in rows:
+                "reference_twice", text=reference, table=reference_table(reference), address=row.address,
+                first=references[(id(table), row.address)], line=lines[row.address]))
+        if row.address in table:
             raise ProfileError(
-                f"{origin}:{number}: " + _say("address_twice", address=row.address, line=first_line[row.address])
+                f"{origin}:{number}: " + _say("address_twice", address=row.address, line=lines[row.address])
             )
         folded = row.code.translate(_UPPER)
         if folded in named:
-            first = named[folded]
+            first_table, first = named[folded]
             raise ProfileError(f"{origin}:{number}: " + _say(
-                "code_twice", code=row.code, address=first, line=first_line[first]))
-        rows[row.address] = row
-        first_line[row.address] = number
+                "code_twice", code=row.code, address=first, line=first_line[first_table][first]))
+        table[row.address] = row
+        lines[row.address] = number
         if isinstance(rows, ReferenceRows):
-            references[row.address] = reference
-        named[folded] = row.address
+            references[(id(table), row.address)] = reference
+        named[folded] = (id(table), row.address)
         if row.words == 2:
-            wide[row.address + 1] = row.address
-    for second, first in wide.items():
-        if second in rows:
-            raise ProfileError(f"{origin}:{first_line[second]}: " + _say(
-                "second_register", address=second, code=rows[first].code, kind=rows[first].kind,
-                line=first_line[first]))
+            wide.append((table, row.address))
+    for table, first in wide:
+        second = first + 1
+        if second in table:
+            lines = first_line[id(table)]
+            raise ProfileError(f"{origin}:{lines[second]}: " + _say(
+                "second_register", address=second, code=table[first].code, kind=table[first].kind,
+                line=lines[first]))
     if header is None:
         raise ProfileError(f"{origin}: " + _say("no_header"))
     return rows

@@ -71,7 +71,9 @@ class ReferenceCheck:
 
     def __init__(self, paths: list[str], layers: list[MapLayer]) -> None:
         # (a layer whose highest address is below every base could never match: not judged)
-        self.layers = [(path, layer, max(layer.rows, default=-1)) for path, layer in zip(paths, layers)]
+        # (a map in references' 3X rows counted: ReferenceRows.inputs)
+        self.layers = [(path, layer, max([*layer.rows, *getattr(layer.rows, "inputs", ())], default=-1))
+                       for path, layer in zip(paths, layers)]
         self.frames: dict[int, int] = {}  # slave -> frames with registers judged
         self.tallies: dict[tuple[int, int], _Tally] = {}
         self.said: list[str] = []
@@ -107,7 +109,7 @@ class ReferenceCheck:
         if count >= JUDGED:
             self.closed.add(slave)
         base = reference_base(device, frame.function)
-        rows = device.rows
+        rows = device.rows_for(frame.function)
         # (a block's addresses, not its Register objects: made, they would be kept, RegisterList.plain)
         addresses = registers.addresses if isinstance(registers, RegisterList) else [r.address for r in registers]
         for index, path, layer in self.applies(device, slave):
@@ -116,6 +118,8 @@ class ReferenceCheck:
                 continue
             tally = self.tallies.setdefault(key, _Tally())
             mine = layer.rows
+            if getattr(mine, "inputs", None) and rows is device.inputs:
+                mine = mine.inputs  # (a map in references: FC4's registers are its 3X rows)
             for address in addresses:
                 if address is None:
                     continue

@@ -424,7 +424,7 @@ class History:
         device = getattr(self._annotate, "device", None)
         if plain is None or device is None:
             return registers
-        rows = device(frame.slave).rows
+        rows = device(frame.slave).rows_for(frame.function)
         fresh = []
         for register in registers:
             address = register.address
@@ -449,7 +449,7 @@ class History:
         slave = frame.slave
         table = self.tables(slave)[frame.function]
         origin = TABLES[frame.function]  # (where a later device's tables move it: SlaveTables)
-        registers = self._values(slave, registers)
+        registers = self._values(slave, registers, function=frame.function)
         listeners = self.listeners if event in (CONFIRM, WRITE_OBSERVED) else None
         memory = self._replayed if event == CONFIRM else None
         for register in registers:
@@ -474,7 +474,7 @@ class History:
         slave = frame.slave
         table = self.tables(slave)[frame.function]
         origin = TABLES[frame.function]  # (where a later device's tables move it: SlaveTables)
-        registers = self._values(slave, registers)
+        registers = self._values(slave, registers, function=frame.function)
         listeners = self.listeners
         memory = self._replayed
         for register in registers:
@@ -498,7 +498,7 @@ class History:
     def _tell(self, frame: Frame, registers: list[Register], event: int | None) -> None:
         """A provisional frame's states, as decoded, to the listeners that show them (None: reads)."""
         listeners = self._watching
-        for register in self._values(frame.slave, registers, counted=False):
+        for register in self._values(frame.slave, registers, counted=False, function=frame.function):
             if register.address is None:
                 continue
             told = event
@@ -507,14 +507,14 @@ class History:
             for listener in listeners:
                 listener.provisional(frame, register, told)
 
-    def _values(self, slave: int, registers: Any, counted: bool = True) -> Any:
+    def _values(self, slave: int, registers: Any, counted: bool = True, function: int = 3) -> Any:
         """The registers as the parameters' values: a 32-bit value once, its first register with the word
         pair as its value; a word of a 32-bit row without the other left out (counted in half_values
         when `counted`). The registers as they are when the slave's map has no 32-bit row."""
         device = None if self._device is None else self._device(slave)
         if device is None or not device.wide:
             return registers
-        rows = device.rows
+        rows = device.rows_for(function)
         values: list[Register] = []
         for index, register in enumerate(registers):
             words = register.words
@@ -564,12 +564,12 @@ class History:
         """The slave's namer, reading a 32-bit row's kept value (a word pair) as the row does."""
         if self._device is None or not self._device(slave).wide:
             return namer
-        rows = self._device(slave).rows
+        device = self._device(slave)
 
-        def name(address: int, value: int) -> Any:
-            row = rows.get(address)
+        def name(address: int, value: int, table: int = 0) -> Any:  # (table: the parameter's, HOLDING 0)
+            row = device.table_rows(table).get(address)
             if row is None or row.words != 2:
-                return namer(address, value)
+                return namer(address, value, table) if table else namer(address, value)
             return wide_text(row, value)[1], row.code
 
         return name
@@ -594,5 +594,6 @@ def wide_maps(annotate: object) -> bool:
     if profiles is None:
         return False
     maps = [load_profile_map(profile) for profile in profiles()]
-    maps += [layer.rows for layer in getattr(annotate, "layers", ())]
+    maps += [table for layer in getattr(annotate, "layers", ()) for table in (layer.rows, getattr(
+        layer.rows, "inputs", {}))]
     return any(row.words == 2 for rows in maps for row in rows.values())

@@ -380,20 +380,20 @@ class Watcher:
             return _State(None, function, status, None, profile, register.status or "unreadable", register.code)
         if event != READ:
             register = _as_written(register)  # a written value has no read status
-        bits = not provisional and self._bits(frame.slave, register.address)  # type: ignore[arg-type]
+        bits = not provisional and self._bits(frame.slave, register.address, function)  # type: ignore[arg-type]
         text, unit = value_text(register, bits)
         return _State(register.value, function, text, unit, profile, None, register.code, register.words == 2)
 
-    def _bits(self, slave: int, address: int) -> bool:
+    def _bits(self, slave: int, address: int, function: int) -> bool:
         if self._device is None:
             return False
-        row = self._device(slave).rows.get(address)
+        row = self._device(slave).rows_for(function).get(address)  # (FC4's: its input rows, if apart)
         return row is not None and bool(row.bits) and not row.enum
 
     def _code(self, slave: int, address: int, state: _State) -> str | None:
         if self._device is None:
             return None
-        row = self._device(slave).rows.get(address)
+        row = self._device(slave).rows_for(state.function).get(address)
         return None if row is None else row.code
 
     def _text(self, slave: int, address: int, state: _State) -> tuple[str, str | None]:
@@ -401,13 +401,13 @@ class Watcher:
         if state.value is None or self._profile_for is None or self._profile_for(slave) is state.profile:
             return state.text, state.unit
         if state.wide:  # a word pair: read by the device's 32-bit row, if it still has one there
-            row = self._device(slave).rows.get(address) if self._device is not None else None
+            row = self._device(slave).rows_for(state.function).get(address) if self._device is not None else None
             if row is None or row.words != 2:
                 return state.text, state.unit
             scaled, text = wide_text(row, state.value)
             return value_text(Register(address, state.value, scaled=scaled, text=text, unit=row.unit, words=2))
         register = self.annotate.plain_register(slave, state.function, address, state.value)  # type: ignore[attr-defined]
-        return value_text(register, self._bits(slave, address))
+        return value_text(register, self._bits(slave, address, state.function))
 
 
 def _as_written(register: Register) -> Register:

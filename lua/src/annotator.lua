@@ -124,7 +124,7 @@ local function register_view(st, f, run, b, index)
   local view = { address = address, value = value, offset = offset }
   if device and address ~= nil then
     local status = run.status and run.status[index] or shown_ok
-    local words, second = words_at(device.rows, address, index, run.count), nil
+    local words, second = words_at(rows_for(device, f.fn), address, index, run.count), nil
     if words == 2 and b ~= nil then second = select(2, register_at(run, b, index + 1, true)) end
     describe(device, f, view, run.plain and run.plain[index], status, words, second, shown_labels)
   end

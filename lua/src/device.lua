@@ -54,23 +54,45 @@ local function copied(t)
   return copy
 end
 
--- A profile's map with the map layers given at run time laid over it, those for which applies(layer).
+-- maps.overlay: `rows` with a layer's rows `mine` laid over it, in place (a layer row hides every row it
+-- overlaps, a 32-bit row's two registers counted).
+local function overlay(rows, mine)
+  for address, row in pairs(mine) do
+    local before = rows[address - 1]
+    if before ~= nil and before.words == 2 and mine[address - 1] == nil then rows[address - 1] = nil end
+    if row.words == 2 and mine[address + 1] == nil then rows[address + 1] = nil end
+  end
+  for address, row in pairs(mine) do rows[address] = row end
+end
+
+-- A profile's map with the map layers given at run time laid over it, those for which applies(layer); and
+-- the rows of its input registers apart (DeviceBuilder.build: a layer in PLC references with 3X rows on a
+-- device whose FC4 reads a table of its own), nil when the rows name them too. Where FC4 reads the holding
+-- registers (profile one_table, the ATV71), a layer's 3X rows join its 4X rows, a 4X row winning.
 local function layered_rows(profile, applies)
-  if #config.layers == 0 then return profile.map or {} end
-  local rows = copied(profile.map or {})
+  if #config.layers == 0 then return profile.map or {}, nil end
+  local rows, inputs, split = copied(profile.map or {}), copied(profile.map or {}), false
   for _, layer in ipairs(config.layers) do
     if applies(layer) then
-      -- (maps.overlay: a layer row hides every row it overlaps, a 32-bit row's two registers counted)
-      local mine = layer.rows
-      for address, row in pairs(mine) do
-        local before = rows[address - 1]
-        if before ~= nil and before.words == 2 and mine[address - 1] == nil then rows[address - 1] = nil end
-        if row.words == 2 and mine[address + 1] == nil then rows[address + 1] = nil end
+      local extra = layer.inputs
+      if extra ~= nil and profile.one_table then
+        overlay(rows, extra)
+        overlay(rows, layer.rows)
+      else
+        overlay(rows, layer.rows)
+        overlay(inputs, extra or layer.rows)
+        split = split or extra ~= nil
       end
-      for address, row in pairs(mine) do rows[address] = row end
     end
   end
-  return rows
+  return rows, split and inputs or nil
+end
+
+-- The rows naming the registers a function code reads or writes (Device.rows_for): its table's.
+local INPUT_FUNCTIONS = DATA.map_format.input_functions
+local function rows_for(device, fn)
+  if device.inputs ~= nil and INPUT_FUNCTIONS[fn] then return device.inputs end
+  return device.rows
 end
 
 -- A map written in PLC references (maps_refs.py, message for message): judged on a slave's first
@@ -137,10 +159,11 @@ local function check_references(f, device)
   refs.frames = refs.frames + 1
   if refs.frames >= REFERENCES_JUDGED then device.refs_open = false end
   local base = reference_base(device.profile, f.fn)
-  local rows, start = device.rows, registers.start
+  local rows, start = rows_for(device, f.fn), registers.start
   for _, judged in ipairs(refs.layers) do
     if not judged.done and start ~= nil then
       local mine, counts = judged.layer.rows, judged.counts
+      if judged.layer.inputs ~= nil and rows == device.inputs then mine = judged.layer.inputs end
       for index = 0, registers.count - 1 do
         local address = (start + index) % 0x10000
         local key = base * 65536 + address
@@ -171,7 +194,7 @@ end
 -- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own
 -- parameter memory (a new profile for a slave starts a new memory, as the annotator builds a new Device).
 local function build_device(profile, slave)
-  local rows = layered_rows(profile, function(layer)
+  local rows, inputs = layered_rows(profile, function(layer)
     return (layer.slave == nil or layer.slave == slave) and (layer.profile == nil or layer.profile == profile.name)
   end)
   local depend, plain = {}, {}
@@ -187,7 +210,7 @@ local function build_device(profile, slave)
   end
   local style = config.style or profile.address_style
   local device = { profile = profile, rows = rows, depend = depend, plain = plain, plc_default = profile.plc_base_default,
-    seen = {} }
+    seen = {}, inputs = inputs }
   -- Parameters are followed only where it tells something: protection, or bits that depend on a value.
   device.track = profile.protected_value ~= nil or next(depend) ~= nil
   if style == "plc" then device.plc = profile.plc_base or {} end

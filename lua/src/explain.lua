@@ -54,7 +54,7 @@ local READ_ONLY = "R" -- the access of a parameter no write changes (devices/acc
 local NONE = {} -- (read only, never changed: a device without a read-only row has none to name)
 local function written_read_only(f, device)
   if not device.read_only then return NONE end -- (no list of the addresses written made for nothing)
-  local rows, named, code, addresses = device.rows, {}, f.fn, {}
+  local rows, named, code, addresses = rows_for(device, f.fn), {}, f.fn, {}
   local run = f.registers
   if REGISTER_WRITES.echo[code] or REGISTER_WRITES.answer[code] then
     if run ~= nil and run.start ~= nil and run.count ~= nil then
@@ -132,7 +132,7 @@ local function refused_registers(device, request)
   local base, out = plc_base(device, request), {}
   for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
     local address = (request.start + index) % 0x10000
-    local row = device.rows[address]
+    local row = rows_for(device, request.fn)[address]
     out[index + 1] = { address = address, row = row, status = row == nil and "non-existent" or "protected",
       label = base and PLC_LABELS[base][address] }
   end

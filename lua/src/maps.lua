@@ -180,7 +180,8 @@ local function map_reference(text)
   wrong("reference", { text = text })
 end
 
--- The rows read from a map written in PLC references (maps.ReferenceRows), for the reference check's note.
+-- The rows read from a map written in PLC references (maps.ReferenceRows), for the reference check's note,
+-- -> its 3X rows (ReferenceRows.inputs: input registers, FC4's), kept apart from its 4X rows.
 local reference_rows = setmetatable({}, { __mode = "k" })
 
 local function map_pairs(text, what)
@@ -303,9 +304,10 @@ local function read_map(text, origin)
     end
   end
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
-  local header, rows, first_line, order, delimiter, number = nil, {}, {}, {}, ",", 0
-  local named = {} -- (code, ASCII case folded as --watch matches it -> its address)
-  local references = {} -- (address -> the reference that named it first: maps.py reference_twice)
+  local header, rows, order, delimiter, number = nil, {}, {}, ",", 0
+  local named = {} -- (code, ASCII case folded as --watch matches it -> { its table, its address })
+  local references = {} -- (table -> address -> the reference that named it first: maps.py reference_twice)
+  local lines = {} -- (table -> address -> its line: the rows, or a reference map's 3X rows)
   -- (lines end where str.splitlines ends them: \r\n, \r, \n, \v, \f, \x1c-\x1e, U+0085, U+2028, U+2029)
   text = text:gsub("\r\n", "\n"):gsub("[\r\v\f\28-\30]", "\n")
   text = text:gsub("\194\133", "\n"):gsub("\226\128[\168\169]", "\n")
@@ -327,7 +329,7 @@ local function read_map(text, origin)
         end
         if named[REFERENCE] then
           if named.address then wrong("reference_and_address") end
-          reference_rows[rows] = true
+          reference_rows[rows] = {}
         end
         for _, required in ipairs(FORMAT.required) do
           if not named[required] and not (required == "address" and named[REFERENCE]) then
@@ -348,28 +350,32 @@ local function read_map(text, origin)
         local reference = values[REFERENCE] ~= nil and strip(values[REFERENCE]) or nil
         if reference ~= nil then values.address = format("%d", map_reference(reference)) end
         local address, row = map_row(values)
-        if rows[address] ~= nil and reference ~= nil then
-          wrong("reference_twice", { text = reference, address = address, first = references[address],
-            line = first_line[address] })
+        local input = reference ~= nil and reference:sub(1, 1) == "3"
+        local into = input and reference_rows[rows] or rows
+        lines[into], references[into] = lines[into] or {}, references[into] or {}
+        if into[address] ~= nil and reference ~= nil then
+          wrong("reference_twice", { text = reference, table = input and "input" or "holding", address = address,
+            first = references[into][address], line = lines[into][address] })
         end
-        if rows[address] ~= nil then wrong("address_twice", { address = address, line = first_line[address] }) end
-        references[address] = reference
+        if into[address] ~= nil then wrong("address_twice", { address = address, line = lines[into][address] }) end
+        references[into][address] = reference
         local first = named[row.code:upper()]
         if first ~= nil then
-          wrong("code_twice", { code = row.code, address = first, line = first_line[first] })
+          wrong("code_twice", { code = row.code, address = first[2], line = lines[first[1]][first[2]] })
         end
-        named[row.code:upper()] = address
-        rows[address], first_line[address] = row, number
-        order[#order + 1] = address
+        named[row.code:upper()] = { into, address }
+        into[address], lines[into][address] = row, number
+        order[#order + 1] = { into, address }
       end
     end
   end
   -- (a 32-bit row's second register defined as a row of its own: told once the file is read, rows in order)
-  for _, first in ipairs(order) do
-    local row, second = rows[first], first + 1
-    if row.words == 2 and rows[second] ~= nil then
-      line_read = format("%s:%d: ", origin, first_line[second])
-      wrong("second_register", { address = second, code = row.code, kind = row.kind, line = first_line[first] })
+  for _, key in ipairs(order) do
+    local into, first = key[1], key[2]
+    local row, second = into[first], first + 1
+    if row.words == 2 and into[second] ~= nil then
+      line_read = format("%s:%d: ", origin, lines[into][second])
+      wrong("second_register", { address = second, code = row.code, kind = row.kind, line = lines[into][first] })
     end
   end
   line_read = origin .. ": "
@@ -422,10 +428,14 @@ local function parse_map_choice(text, profile_names)
         errors[#errors + 1] = problem
       else
         -- (name, high: what check_references in lua/src/device.lua reads: the file as given, its highest address)
-        local high = -1
-        for address in pairs(rows) do high = math.max(high, address) end
+        -- (inputs: a map in references' 3X rows, nil when it has none: its rows then name either table)
+        local high, inputs = -1, reference_rows[rows]
+        if inputs ~= nil and next(inputs) == nil then inputs = nil end
+        for _, table in ipairs({ rows, inputs or {} }) do
+          for address in pairs(table) do high = math.max(high, address) end
+        end
         layers[#layers + 1] = { rows = rows, slave = slave, profile = not slave and target or nil,
-          name = printable(path), high = high, references = reference_rows[rows] == true }
+          name = printable(path), high = high, references = reference_rows[rows] ~= nil, inputs = inputs }
       end
     end
   end
@@ -434,3 +444,5 @@ end
 
 -- (for the conformance runner, which reads map texts: the modules read files, load_map)
 M.parse_map = parse_map
+-- (a map in references' 3X rows, as the conformance runner compares them: maps.ReferenceRows.inputs)
+function M.map_inputs(rows) return reference_rows[rows] end

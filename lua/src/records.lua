@@ -269,7 +269,8 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   if bits and quantity % 8 > 0 and byte(bytes, 3 + count) >= 2 ^ (quantity % 8) then return nil end
   -- annotate_with: nothing but the registers' bookkeeping
   local device = device_for(st, slave)
-  if not device or device.refs_open then return nil end -- (its frames judged: check_references, take_frame)
+  -- (its frames judged: check_references, take_frame; input rows apart: named by their table there)
+  if not device or device.refs_open or device.inputs ~= nil then return nil end
   local profile = device.profile
   if profile.function_names[code] ~= nil then return nil end
   -- annotate_registers: every register the usual one (not 16#8000, under no layout rule, read before with a
@@ -376,7 +377,7 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
     if known == nil or known.length ~= n then return nil end
   end
   local device = known.device
-  if device_for(st, slave) ~= device or device.refs_open then return nil end
+  if device_for(st, slave) ~= device or device.refs_open or device.inputs ~= nil then return nil end
   if own then
     local registers = known.registers
     if registers ~= nil and next(device.depend) ~= nil then

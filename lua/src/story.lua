@@ -137,8 +137,9 @@ local MARKER_TEXTS = { ["non-existent"] = say("marker_non_existent", {}), protec
 -- One register of a frame, in capture order: is it read with its plain layout (a bits_depend rule), and
 -- its 16#8000 status (nil: the profile has none, or this is no read). Notes and the story go on.
 local function annotate_one(f, device, address, value, protected, multi, label, words)
-  local row = device.rows[address]
-  local rule = story.plain_rule(device, address, row)
+  local rows = rows_for(device, f.fn) -- (FC4's: a map in references' 3X rows, where they are apart)
+  local row = rows[address]
+  local rule = rows == device.rows and story.plain_rule(device, address, row) or nil -- (rules: holding's)
   if rule ~= nil and not has_note(f, rule.reason) then note(f, rule.reason) end
   local status = nil
   if protected ~= nil then
@@ -146,7 +147,7 @@ local function annotate_one(f, device, address, value, protected, multi, label, 
     -- (a word of a 32-bit value is no parameter on its own)
     if value == protected and multi and words == 1 then
       if row == nil then -- (a 32-bit value's second word alone: that value's 16#8000, as its first's)
-        status = rows_before(device.rows, address) and "ambiguous" or "non-existent"
+        status = rows_before(rows, address) and "ambiguous" or "non-existent"
       else
         status = row.ambiguous_8000 and "ambiguous" or "protected"
       end
@@ -184,7 +185,7 @@ end
 -- the next word, when words is 2) and PLC label (`labels`: frame_labels', nil to find them), from the plain
 -- layout flag (a bits_depend rule) and its status: maps.interpret / interpret_wide, then the 16#8000 texts.
 local function describe(device, f, reg, plain, status, words, second, labels)
-  local rows, address, value = device.rows, reg.address, reg.value
+  local rows, address, value = rows_for(device, f.fn), reg.address, reg.value
   local row = rows[address]
   local named, scaled, text = row, nil, nil
   if row ~= nil then -- (nested: most registers of a frame have no row, and each test here is paid per register)
@@ -226,7 +227,7 @@ local function annotate_registers(f, device, run, b, read)
   -- Nothing to follow: no 16#8000 story, no layout that depends on another register.
   if protected == nil and next(device.depend) == nil then return end
   local base = plc_base(device, f)
-  local rows = device.rows
+  local rows = rows_for(device, f.fn)
   for index = 0, count - 1 do
     local k = first + 2 * index
     local address = (start + index) % 0x10000

@@ -405,7 +405,7 @@ local function single_text(f, st, device, value)
   local run = f.registers
   if device ~= nil and run ~= nil and run.count > 0 and run.start ~= nil then
     local reg = { address = run.start, value = value }
-    describe(device, f, reg, run.plain and run.plain[0], nil, words_at(device.rows, run.start, 0, run.count))
+    describe(device, f, reg, run.plain and run.plain[0], nil, words_at(rows_for(device, f.fn), run.start, 0, run.count))
     local code = reg.row and reg.row.code
     if code or reg.text then
       return " " .. (code or reg.label or DECIMAL[run.start]) .. "=" .. (reg.text or DECIMAL[value])

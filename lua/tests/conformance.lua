@@ -276,13 +276,21 @@ local function map_reading(entry)
       for key, text in pairs(labels or {}) do out[format("%d", key)] = text end
       return out
     end
-    for address, row in pairs(rows) do
-      got[#got + 1] = { address = address, code = row.code, name = row.name, unit = row.unit, scale = row.scale,
+    -- (a map in references' 3X rows after its 4X rows, table "input": maps.ReferenceRows.inputs)
+    local all = {}
+    for address, row in pairs(rows) do all[#all + 1] = { address, row, nil } end
+    for address, row in pairs(M.map_inputs(rows) or {}) do all[#all + 1] = { address, row, "input" } end
+    for _, entry in ipairs(all) do
+      local address, row = entry[1], entry[2]
+      got[#got + 1] = { table = entry[3], address = address, code = row.code, name = row.name, unit = row.unit, scale = row.scale,
         decimals = row.decimals or 0, enum = keyed(row.enum), bits = keyed(row.bits), signed = row.signed == true,
         words = row.words or 1, type = row.kind, swapped = row.swapped == true, source = row.source,
         ambiguous_8000 = row.ambiguous_8000 == true }
     end
-    table.sort(got, function(a, b) return a.address < b.address end)
+    table.sort(got, function(a, b)
+      if (a.table ~= nil) ~= (b.table ~= nil) then return b.table ~= nil end
+      return a.address < b.address
+    end)
   end
   check("map reading " .. entry.name, got, entry.rows or entry.error)
 end

@@ -329,8 +329,11 @@ MAP_TEXTS = {
     "reference unicode digits": "reference,code\n\u0664\u0660\u0660\u0660\u0661,A\n",
     "reference empty": "reference,code\n,A\n",
     "reference twice": "reference,code\n40002,A\n400002,B\n",
-    # (a manual's input and holding registers together: a map keys rows by address, whatever the table)
-    "reference 3X and 4X": "reference,code\n30001,IN\n40001,HOLD\n",
+    # (a manual's input and holding registers together: 30001 and 40001 are input and holding register 0)
+    "reference 3X and 4X": "reference,code,type\n30001,IN,\n40001,HOLD,\n30003,IN2,uint32\n40004,HR3,\n",
+    "reference 3X twice": "reference,code\n30001,IN\n300001,IN0\n",
+    "reference 3X second register": "reference,code,type\n30001,A,int32\n40002,B,\n30002,C,\n",
+    "reference code in both tables": "reference,code\n30001,A\n40002,a\n",
     "reference second register": "reference,code,type\n40001,A,int32\n40002,B,\n",
     "empty": "",
 }
@@ -362,13 +365,16 @@ def _read(name: str, given: dict[str, str], read: Callable[[], Any]) -> dict[str
         rows = read()
     except ProfileError as error:
         return {"name": name, **given, "error": str(error)}
+    # (a map in references' 3X rows after its 4X rows, `table` "input": ReferenceRows.inputs)
+    inputs = sorted(getattr(rows, "inputs", {}).items())
     return {"name": name, **given, "rows": [
-        {"address": address, "code": row.code, "name": row.name, "unit": row.unit, "scale": row.scale,
+        {**({"table": "input"} if table else {}),
+         "address": address, "code": row.code, "name": row.name, "unit": row.unit, "scale": row.scale,
          "decimals": row.decimals, "enum": {str(k): v for k, v in row.enum.items()},
          "bits": {str(k): v for k, v in row.bits.items()}, "signed": row.signed, "words": row.words,
          "type": row.kind if row.words == 2 else None, "swapped": row.swapped, "source": row.source,
          "ambiguous_8000": row.ambiguous_8000}
-        for address, row in sorted(rows.items())
+        for table, (address, row) in [*((0, item) for item in sorted(rows.items())), *((1, item) for item in inputs)]
     ]}
 
 

@@ -156,10 +156,11 @@ BAD_REFERENCES = {
     "reference,code\n465537,A\n": "map.csv:2: reference '465537' is not a 4X or 3X register reference "
                                    "(40001..49999, 400001..465536; 30001..39999, 300001..365536)",
     # (two references of one address: said as references, not `address 0 already defined on line 2`)
-    "reference,code\n40001,A\n400001,B\n": "map.csv:3: reference '400001' is address 0, as '40001' on line 2: "
-                                           "a map names each address once, 3X and 4X alike",
-    "reference,code\n30001,IN\n 40001 ,HOLD\n": "map.csv:3: reference '40001' is address 0, as '30001' on line "
-                                                "2: a map names each address once, 3X and 4X alike",
+    "reference,code\n40001,A\n400001,B\n": "map.csv:3: reference '400001' is holding register 0, as '40001' on "
+                                           "line 2: a map names each register once",
+    # (a manual's 30001 and 40001 are input and holding register 0: two registers, test_map_tables.py)
+    "reference,code\n30001,IN\n 300001 ,X\n": "map.csv:3: reference '300001' is input register 0, as '30001' on "
+                                              "line 2: a map names each register once",
     "name,code\n": "map.csv:1: the header lacks the 'address' column",
 }
 

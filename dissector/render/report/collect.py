@@ -280,7 +280,7 @@ class ReportCollector:
         else:
             x = self._x(frame)  # the item's own x (add() saw it first: idempotent)
             col = self._col(x)
-            rows = None if self._device is None else self._device(frame.slave).rows
+            rows = None if self._device is None else self._device(frame.slave).rows_for(frame.function)
             self._at, self._at_x, self._at_col, self._at_rows = frame, x, col, rows
         slave = frame.slave
         table = self.history.tables(frame.slave)[frame.function]
@@ -374,7 +374,7 @@ class ReportCollector:
             if series.code is None and register.code is not None:
                 series.code, series.name = register.code, register.name
         elif changed:
-            row = self._device(slave).rows.get(address)
+            row = self._device(slave).rows_for(function).get(address)
             if row is not series.row:
                 adopt(series, row)
         return series, self._y(series, register)  # type: ignore[arg-type]
@@ -389,10 +389,10 @@ class ReportCollector:
         the other way)."""
         if self._device is None:
             return
-        rows = self._device(slave).rows
-        for (owner, address, _table), series in self.series.items():
+        device = self._device(slave)
+        for (owner, address, table), series in self.series.items():
             if owner == slave:
-                row = rows.get(address)
+                row = device.table_rows(table).get(address)
                 if row is not series.row:
                     adopt(series, row)
 
