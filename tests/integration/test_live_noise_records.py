@@ -8,21 +8,19 @@ A noise run now shares the record of the items after it in the batch that no sil
 from __future__ import annotations
 
 import json
-import os
 import random
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from conftest import ROOT
-from live_tape import tape_of, write_tape
+from live_tape import run_cli, tape_of, write_tape
 from lua_harness import record_lengths
 
 from dissector.sim.mixes import plant_mix
 
+pytestmark = pytest.mark.serial  # (--live replays: run alone, as before run_cli moved to live_tape)
 ENGINES = pytest.mark.parametrize("pure", [False, True], ids=["engine", "python"])
 # Seed 6's plant tape: slave 30's read, 20 bytes of noise, right after them a damaged exception, then the answer.
 READS = [(bytes.fromhex(text), 100 + at) for text, at in [
@@ -41,15 +39,7 @@ LIVE = [
 
 
 def run(argv: list[str], pure: bool, tape: Path | None = None) -> list[str]:
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
-    env.pop("VW3_PURE_PYTHON", None)
-    if pure:
-        env["VW3_PURE_PYTHON"] = "1"
-    if tape is not None:
-        env["VW3_LIVE_REPLAY"] = str(tape)
-        argv = ["--live", "/dev/ttyTAPE", "--baud", "19200", *argv]
-    done = subprocess.run([sys.executable, "-m", "dissector", "-n", *argv], cwd=ROOT, env=env,
-                          capture_output=True, text=True, timeout=300)
+    done = run_cli(["-n", *argv], pure, tape)
     assert done.returncode == 0, done.stderr
     return done.stdout.splitlines()
 

@@ -3,19 +3,15 @@ summary line) and by a --parquet run (once after the captures), as by a file dec
 (test_map_references_stderr.py): neither said it before. A map at protocol addresses says nothing."""
 from __future__ import annotations
 
-import os
 import random
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from conftest import ROOT
 from helpers import rtu, write_rtu
-from live_tape import tape_of
+from live_tape import run_cli, tape_of
 
-pytestmark = pytest.mark.integration
+pytestmark = [pytest.mark.integration, pytest.mark.serial]  # (--live replays: serial, as before)
 
 READ = ["01 03 0000 0004", "01 03 08 0193 01B8 01DC 0202"]
 WARNING = ("vw3-decode: warning: map {path} names 2 of the 4 unnamed registers slave 1 reads or writes at "
@@ -25,15 +21,7 @@ ENGINES = pytest.mark.parametrize("pure", [False, True], ids=["engine", "python"
 
 
 def _run(argv: list[str], pure: bool, tape: Path | None = None) -> tuple[int, str, str]:
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
-    env.pop("VW3_PURE_PYTHON", None)
-    if pure:
-        env["VW3_PURE_PYTHON"] = "1"
-    if tape is not None:
-        env["VW3_LIVE_REPLAY"] = str(tape)
-        argv = ["--live", "/dev/ttyTAPE", "--baud", "19200", *argv]
-    done = subprocess.run([sys.executable, "-m", "dissector", *argv], cwd=ROOT, env=env, capture_output=True,
-                          text=True, timeout=300)
+    done = run_cli(argv, pure, tape)
     return done.returncode, done.stdout, done.stderr
 
 

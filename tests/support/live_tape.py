@@ -5,13 +5,31 @@ them (random reads of 1..64 bytes, each stamped when its last byte came), with t
 runs, a slave that answers after the timeout or not at all."""
 from __future__ import annotations
 
+import os
 import random
+import subprocess
+import sys
 from pathlib import Path
 
 from dissector.app.live_capture import _TAPE_EVENT
 from dissector.sim.simulate import Record
 
 IDLE_READ = 0.010  # a read that times out: the port's READ_TIMEOUT
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def run_cli(argv: list[str], pure: bool, tape: Path | None = None) -> subprocess.CompletedProcess[str]:
+    """vw3-decode in a process of its own, on the compiled path or the Python stages (`pure`); with a tape,
+    as `--live` on a port that replays it (VW3_LIVE_REPLAY)."""
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    env.pop("VW3_PURE_PYTHON", None)
+    if pure:
+        env["VW3_PURE_PYTHON"] = "1"
+    if tape is not None:
+        env["VW3_LIVE_REPLAY"] = str(tape)
+        argv = ["--live", "/dev/ttyTAPE", "--baud", "19200", *argv]
+    return subprocess.run([sys.executable, "-m", "dissector", *argv], cwd=ROOT, env=env, capture_output=True,
+                          text=True, timeout=300)
 
 
 def damaged(records: list[Record], rng: random.Random, rate: float = 0.02) -> list[Record]:
