@@ -136,10 +136,11 @@ static int param_count(Param *p, int event) {
     return event_rules[event].state;
 }
 
-/* namer(address, value): the (text, code) a slave's device gives a register, a new reference; NULL with an
+/* namer(address, value, table): the (text, code) a slave's device gives a register of the parameter's table
+ * (a map in references names input registers apart: Device.table_rows), a new reference; NULL with an
  * exception set. */
-static PyObject *named(PyObject *namer, unsigned address, unsigned value) {
-    PyObject *answer = PyObject_CallFunction(namer, "II", address, value);
+static PyObject *named(PyObject *namer, unsigned address, unsigned value, unsigned table) {
+    PyObject *answer = PyObject_CallFunction(namer, "III", address, value, table);
     if (answer != NULL && (!PyTuple_Check(answer) || PyTuple_GET_SIZE(answer) != 2)) {
         Py_CLEAR(answer);
         PyErr_SetString(PyExc_TypeError, "namer must return (text, code)");
@@ -150,7 +151,7 @@ static PyObject *named(PyObject *namer, unsigned address, unsigned value) {
 /* The parameter's code as `namer` (the slave's device) gives it for (address, value), remembered with the
  * namer that gave it: 0, or -1 with an exception set. */
 static int take_code(Param *p, PyObject *namer, unsigned address, unsigned value) {
-    PyObject *answer = named(namer, address, value);
+    PyObject *answer = named(namer, address, value, PARAM_TABLE(p->key));
     if (answer == NULL) return -1;
     PyObject *code = PyTuple_GET_ITEM(answer, 1);
     if (code != Py_None) Py_XSETREF(p->code, Py_NewRef(code));
@@ -452,7 +453,7 @@ static PyObject *param_text(const Param *p) {
     if (p->status != NULL) return Py_NewRef(p->status);
     if (p->text != NULL) return Py_NewRef(p->text);
     if (!p->has_last || !p->last_mapped || p->namer == NULL || p->namer == Py_None) Py_RETURN_NONE;
-    PyObject *answer = named(p->namer, PARAM_ADDRESS(p->key), (unsigned)p->last);
+    PyObject *answer = named(p->namer, PARAM_ADDRESS(p->key), (unsigned)p->last, PARAM_TABLE(p->key));
     if (answer == NULL) return NULL;
     PyObject *text = Py_NewRef(PyTuple_GET_ITEM(answer, 0));
     Py_DECREF(answer);

@@ -569,7 +569,7 @@ class History:
         def name(address: int, value: int, table: int = 0) -> Any:  # (table: the parameter's, HOLDING 0)
             row = device.table_rows(table).get(address)
             if row is None or row.words != 2:
-                return namer(address, value, table) if table else namer(address, value)
+                return namer(address, value, table)
             return wide_text(row, value)[1], row.code
 
         return name

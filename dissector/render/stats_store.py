@@ -315,11 +315,12 @@ class ParameterTable:
         join(kept, moved)
 
     def rename(self, namers: dict[int, Any]) -> None:
-        for (slave, address, _table), stats in self._parameters.items():
+        for (slave, address, table), stats in self._parameters.items():
             namer = namers.get(slave)
             if namer is None:
                 continue
-            text, code = namer(address, 0 if stats.status is not None or stats.last is None else stats.last)
+            # (the parameter's table: a map in references names input registers apart, Device.table_rows)
+            text, code = namer(address, 0 if stats.status is not None or stats.last is None else stats.last, table)
             stats.code = code  # the new device's, None where it names nothing (not the old one's)
             if stats.status is None and stats.last is not None:
                 stats.last_text = text

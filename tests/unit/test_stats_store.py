@@ -10,7 +10,7 @@ import pytest
 
 from dissector.accel import _summary
 from dissector.render.stats_store import (
-    HOLDING_REGISTERS, MAX_KEYS, MAX_TALLY, TALLY_TIMES, Coarse,
+    HOLDING_REGISTERS, INPUT_REGISTERS, MAX_KEYS, MAX_TALLY, TALLY_TIMES, Coarse,
     CONFIRM, READ, REFUSED, UNREADABLE, WRITE, WRITE_OBSERVED, ParameterTable, new_store, parameter_rows,
 )
 
@@ -53,12 +53,29 @@ def test_one_story_in_both_stores() -> None:
         (12, 3104, "HSP", 2, 1, 2, 1, 510, "51.0 Hz", 3, HOLDING_REGISTERS),  # 500 -> protected -> 500 -> 510
     ]
     # A profile chosen later names the values kept of its slave (and leaves statuses as they are).
-    namers = {1: lambda address, value: (f"{value} named", "NAMED"), 5: lambda address, value: ("never", "Y")}
+    namers = {1: lambda address, value, table: (f"{value} named", "NAMED"),
+              5: lambda address, value, table: ("never", "Y")}
     compiled.rename(namers)
     python.rename(namers)
     assert list(parameter_rows(compiled)) == python.parameters()
     assert [row[2] for row in python.parameters()] == [None, "NAMED", "Y", "Y", "HSP"]
     assert [row[8] for row in python.parameters()] == [None, "4 named", "protected", "non-existent", "51.0 Hz"]
+
+
+def test_rename_names_each_table_by_its_rows() -> None:
+    """A profile chosen later names a kept input register by the rows of the input table: a map in PLC
+    references names 30001 (input register 0) and 40001 (holding register 0) apart (Device.table_rows), and
+    both stores ask the namer with the parameter's table (they asked (address, value): IN0 was named HR0)."""
+    rows = {HOLDING_REGISTERS: {0: "HR0"}, INPUT_REGISTERS: {0: "IN0"}}
+    namers = {1: lambda address, value, table: (f"{value} of {rows[table][address]}", rows[table][address])}
+    compiled, python = _summary.Stats(MAX_KEYS), ParameterTable()
+    for store in (compiled, python):
+        store.param(1, 0, READ, 7, None, None, INPUT_REGISTERS)
+        store.param(1, 0, READ, 9, None, None, HOLDING_REGISTERS)
+        store.rename(namers)
+    assert list(parameter_rows(compiled)) == python.parameters()
+    assert [(row[1], row[2], row[8], row[10]) for row in python.parameters()] == [
+        (0, "HR0", "9 of HR0", HOLDING_REGISTERS), (0, "IN0", "7 of IN0", INPUT_REGISTERS)]
 
 
 def test_random_events_same_rows() -> None:
