@@ -8067,7 +8067,7 @@ package.preload["vw3.selection"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.selection"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local NOISE, PROFILES, READS, RESPONSE, SELECTION = NOISE, PROFILES, READS, RESPONSE, SELECTION
+local DATA, NOISE, PROFILES, READS, RESPONSE, SELECTION = DATA, NOISE, PROFILES, READS, RESPONSE, SELECTION
 local build_device, concat, copied, device_for, format = build_device, concat, copied, device_for, format
 local ipairs, lane, layered_rows, made_once, math, next = ipairs, lane, layered_rows, made_once, math, next
 local note, pairs, register_at, say, span_name, table = note, pairs, register_at, say, span_name, table
@@ -8104,12 +8104,16 @@ local function open(judged)
   return (choice == nil or choice.profile == FALLBACK) and not settled(judged)
 end
 
-local function candidate_rows(name)
-  -- a candidate's map as traffic is judged against it: its own rows and the map layers given for it
+-- A candidate's map as traffic is judged against it: its own rows and the map layers given for it; FC4's
+-- registers judged against a map's 3X rows where the device names them apart (layered_rows' inputs).
+local INPUT_FUNCTIONS = DATA.map_format.input_functions
+local function candidate_rows(name, fn)
   config.fit_rows = config.fit_rows or made_once(function(candidate)
-    return layered_rows(PROFILES[candidate], function(layer) return layer.profile == candidate end)
+    local rows, inputs = layered_rows(PROFILES[candidate], function(layer) return layer.profile == candidate end)
+    return { rows = rows, inputs = inputs }
   end)
-  return config.fit_rows[name]
+  local made = config.fit_rows[name]
+  return made.inputs ~= nil and INPUT_FUNCTIONS[fn] and made.inputs or made.rows
 end
 
 local function identified(f)
@@ -8151,7 +8155,7 @@ end
 -- false, one it would not give; nil, nothing either way.
 local function fits(f, name, registers)
   local profile = PROFILES[name]
-  local rows = candidate_rows(name)
+  local rows = candidate_rows(name, f.fn)
   if not profile.identify.traffic_fit or next(rows) == nil then return nil end
   if profile.functions ~= nil and not profile.functions[f.fn] then return false end
   if #registers == 0 then return nil end

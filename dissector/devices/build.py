@@ -5,8 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from dissector.devices.annotator import Annotator, MapLayer
-from dissector.devices.maps import load_map_file, overlay
-from dissector.devices.maps import RegisterMap
+from dissector.devices.device import layered_rows
+from dissector.devices.maps import TableRows, load_map_file
 from dissector.devices.maps_refs import CheckedAnnotator
 from dissector.devices.profiles import (
     ADDRESS_STYLES, AUTO, BUILTIN_PROFILES, DEFAULT_PROFILE, FALLBACK_PROFILE, Profile, load_profile,
@@ -105,12 +105,11 @@ def build_annotator(
             )
     if selector is not None:
         # A profile's map as traffic is judged against it: its own rows and the --map rows given for it.
+        # (a map in PLC references: FC4's reads judged against its 3X rows, as the device will name them)
         for profile in auto_candidates:
-            rows: RegisterMap = dict(load_profile_map(profile))
-            for layer in layers:
-                if layer.profile == profile.name:
-                    rows = overlay(rows, layer.rows)
-            selector.candidates.append((profile, rows))
+            rows, inputs = layered_rows(profile, load_profile_map(profile),
+                                        [layer for layer in layers if layer.profile == profile.name])
+            selector.candidates.append((profile, rows if inputs is None else TableRows(rows, inputs)))
     if layers:  # (a map written in PLC references is told from the traffic: maps_refs.py)
         return CheckedAnnotator(default, per_slave, layers, address_style, selector, paths=paths)
     return Annotator(default, per_slave, layers, address_style, selector)

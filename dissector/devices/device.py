@@ -82,6 +82,27 @@ class Device:
         return () if function in self.unchecked else self.limited.get(function)
 
 
+def layered_rows(profile: Profile, base: RegisterMap, layers: list[MapLayer]) -> tuple[RegisterMap, RegisterMap | None]:
+    """A profile's map `base` with the --map layers that apply laid over it; and the rows of its input
+    registers apart (a layer in PLC references with 3X rows, on a device whose FC4 reads a table of its own),
+    None when the rows name them too (lua/src/device.lua layered_rows)."""
+    rows = inputs = base
+    split = False
+    one_table = profile.input_registers == "holding"
+    for layer in layers:
+        extra = (layer.rows.inputs or None) if isinstance(layer.rows, ReferenceRows) else None
+        if extra and one_table:
+            # FC4 reads the holding registers (the ATV71): a 3X row names the register FC3 reads too,
+            # and where a 4X row of the layer names the same one, the 4X row wins.
+            rows = overlay(overlay(rows, extra), layer.rows)
+            continue
+        rows = overlay(rows, layer.rows)  # (a copy: the base map is shared)
+        # An address map names a register whatever the table; a map in references, its 3X rows FC4's.
+        inputs = overlay(inputs, extra if extra is not None else layer.rows)
+        split = split or extra is not None
+    return rows, inputs if split else None
+
+
 class DeviceBuilder:
     """Devices from profiles and --map layers; each profile's map is read once."""
 
@@ -94,24 +115,10 @@ class DeviceBuilder:
         base = self._base_maps.get(profile.name)
         if base is None:
             base = self._base_maps[profile.name] = load_profile_map(profile)
-        rows = inputs = base
-        split = False  # a layer in PLC references has 3X rows: FC4's registers named apart
-        one_table = profile.input_registers == "holding"
-        for layer in self.layers:
-            if layer.slave is not None and layer.slave != slave:
-                continue
-            if layer.profile is not None and layer.profile != profile.name:
-                continue
-            extra = (layer.rows.inputs or None) if isinstance(layer.rows, ReferenceRows) else None
-            if extra and one_table:
-                # FC4 reads the holding registers (the ATV71): a 3X row names the register FC3 reads too,
-                # and where a 4X row of the layer names the same one, the 4X row wins.
-                rows = overlay(overlay(rows, extra), layer.rows)
-                continue
-            rows = overlay(rows, layer.rows)  # (a copy: the base map is shared)
-            # An address map names a register whatever the table; a map in references, its 3X rows FC4's.
-            inputs = overlay(inputs, extra if extra is not None else layer.rows)
-            split = split or extra is not None
+        rows, inputs = layered_rows(profile, base, [
+            layer for layer in self.layers
+            if (layer.slave is None or layer.slave == slave) and (layer.profile is None or layer.profile == profile.name)
+        ])
         depend: dict[int, BitsDepend] = {}
         plain: dict[int, RegisterDef] = {}
         for rule in profile.bits_depend:
@@ -130,8 +137,8 @@ class DeviceBuilder:
             plc_default=profile.plc_base_default,
             track=profile.protected_value is not None or bool(depend),
             unchecked=_unchecked(supported, profile.inner_only, frozenset(profile.limits)),
-            wide=any(row.words == 2 for table in (rows, inputs if split else {}) for row in table.values()),
-            inputs=inputs if split else None,
+            wide=any(row.words == 2 for table in (rows, inputs or {}) for row in table.values()),
+            inputs=inputs,
             input_seen=None if profile.input_registers == "holding" else {},
             limited={
                 function: limits

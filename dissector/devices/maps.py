@@ -222,6 +222,16 @@ class ReferenceRows(dict):  # type: ignore[type-arg]
         self.inputs: RegisterMap = {}
 
 
+class TableRows(dict):  # type: ignore[type-arg]
+    """A candidate profile's rows as profile `auto` judges traffic against them (devices/build.py): the rows
+    naming its holding registers, and `inputs`, those naming its input registers apart (DeviceBuilder's
+    layered_rows: a map in PLC references with 3X rows)."""
+
+    def __init__(self, rows: RegisterMap, inputs: RegisterMap) -> None:
+        super().__init__(rows)
+        self.inputs = inputs
+
+
 def _pairs(text: str, what: str, low: int, high: int) -> dict[int, str]:
     out: dict[int, str] = {}
     for part in text.split(";"):

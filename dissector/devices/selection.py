@@ -27,8 +27,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from dissector.devices.maps import RegisterMap
-from dissector.devices.profiles import Profile
+from dissector.devices.maps import RegisterMap, TableRows
+from dissector.devices.profiles import INPUT_REGISTERS, Profile, register_table
 from dissector.model import Frame, Kind
 from dissector.protocol import table
 from dissector.protocol.rules import text
@@ -307,6 +307,8 @@ def _fits(frame: Frame, profile: Profile, rows: RegisterMap) -> bool | int | Non
     registers = frame.registers
     if not registers:
         return None
+    if isinstance(rows, TableRows) and register_table(frame.function) == INPUT_REGISTERS:
+        rows = rows.inputs  # (FC4's registers, named by a map's 3X rows apart: Device.rows_for)
     known = 0
     marker: int | None = None
     for register in registers:

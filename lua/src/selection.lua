@@ -36,12 +36,16 @@ local function open(judged)
   return (choice == nil or choice.profile == FALLBACK) and not settled(judged)
 end
 
-local function candidate_rows(name)
-  -- a candidate's map as traffic is judged against it: its own rows and the map layers given for it
+-- A candidate's map as traffic is judged against it: its own rows and the map layers given for it; FC4's
+-- registers judged against a map's 3X rows where the device names them apart (layered_rows' inputs).
+local INPUT_FUNCTIONS = DATA.map_format.input_functions
+local function candidate_rows(name, fn)
   config.fit_rows = config.fit_rows or made_once(function(candidate)
-    return layered_rows(PROFILES[candidate], function(layer) return layer.profile == candidate end)
+    local rows, inputs = layered_rows(PROFILES[candidate], function(layer) return layer.profile == candidate end)
+    return { rows = rows, inputs = inputs }
   end)
-  return config.fit_rows[name]
+  local made = config.fit_rows[name]
+  return made.inputs ~= nil and INPUT_FUNCTIONS[fn] and made.inputs or made.rows
 end
 
 local function identified(f)
@@ -83,7 +87,7 @@ end
 -- false, one it would not give; nil, nothing either way.
 local function fits(f, name, registers)
   local profile = PROFILES[name]
-  local rows = candidate_rows(name)
+  local rows = candidate_rows(name, f.fn)
   if not profile.identify.traffic_fit or next(rows) == nil then return nil end
   if profile.functions ~= nil and not profile.functions[f.fn] then return false end
   if #registers == 0 then return nil end

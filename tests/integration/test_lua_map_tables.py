@@ -52,3 +52,14 @@ def test_plugin_joins_3x_rows_where_fc4_reads_the_holding_registers(tmp_path: Pa
     assert [[code for code, _text in item] for item in _named(lua)] == [["HR0", None, "IN2"]] * 2
     differences = compare(python_items(pcap, ["atv71"], "--map", str(path)), lua, frozenset())
     assert not differences, "\n".join(differences[:40])
+
+
+def test_plugin_auto_judges_fc4_reads_by_the_3x_rows(tmp_path: Path) -> None:
+    """As vw3-decode (test_map_tables.py): profile auto chooses sel749m on FC4 reads its map's 3X rows name."""
+    pcap = _pcap(tmp_path, ["01 04 0000 0002", "01 04 04 000A 000B", "01 04 000A 0001", "01 04 02 0007"] * 2)
+    path = tmp_path / "m.csv"
+    path.write_text("reference,code\n30001,IN0\n30002,IN1\n30011,IN10\n40001,HR0\n")
+    lua, _, _ = lua_items(pcap, "-o", f"vw3.maps:sel749m={path}")
+    assert [[code for code, _text in item] for item in _named(lua)] == [["IN0", "IN1"], ["IN10"]] * 2
+    differences = compare(python_items(pcap, None, "--map", f"sel749m={path}"), lua, frozenset())
+    assert not differences, "\n".join(differences[:40])

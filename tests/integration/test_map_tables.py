@@ -95,3 +95,20 @@ def test_where_fc4_reads_the_holding_registers_a_4x_row_wins(tmp_path: Path, mon
         "     2            -   1 response  Read Input Registers 0..2 (3): HR0=10 1=11 IN2=12 [#1]  CRC ok",
         "     4            -   1 response  Read Holding Registers 0..2 (3): HR0=20 1=21 IN2=22 [#3]  CRC ok",
     ])
+
+
+# Profile auto judges a slave's FC4 reads against the 3X rows of a map given for a candidate profile, as
+# that device will name them (it judged them against the holding rows: no evidence, the slave stayed generic).
+FC4_READS = ["01 04 0000 0002", "01 04 04 000A 000B", "01 04 000A 0001", "01 04 02 0007"] * 2
+FIT = "traffic fits its map: function 4 at 0..1 in frame #2, function 4 at 10 in frame #4"
+
+
+@pytest.mark.parametrize("pure", [False, True], ids=["engine", "pure"])
+def test_auto_judges_fc4_reads_by_the_3x_rows(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    use_engine(monkeypatch, pure)
+    capture, path = _files(tmp_path, FC4_READS, "reference,code\n30001,IN0\n30002,IN1\n30011,IN10\n40001,HR0\n")
+    status, out, err = run_cli([capture, "--map", f"sel749m={path}", "--stats"])
+    assert (status, err) == (0, "")
+    assert out.split("Device profiles\n")[1].splitlines()[2] == f"    1  sel749m  {FIT}"
+    status, out, err = run_cli([capture, "--map", f"sel749m={path}", "-T", "fields", "-e", "code", "-c", "4"])
+    assert (status, out, err) == (0, "\nIN0,IN1\n\nIN10\n", "")
