@@ -7299,12 +7299,14 @@ local function reference_check(profile, slave)
   return { frames = 0, layers = layers, left = #layers }
 end
 
--- maps_refs.names: a map names this register, a row of its own or a 32-bit row's second word.
-local function map_names(rows, address)
-  if rows[address] ~= nil then return true end
-  local before = rows[address - 1]
-  return before ~= nil and before.words == 2
+-- The 32-bit row whose second register `address` is (naming.wide_before), or false.
+local function rows_before(rows, address)
+  local before = rows[(address + 0xFFFF) % 0x10000]
+  return before ~= nil and before.words == 2 and before
 end
+
+-- maps_refs.names: a map names this register, a row of its own or a 32-bit row's second word.
+local function map_names(rows, address) return rows[address] ~= nil or rows_before(rows, address) ~= false end
 
 -- maps_refs.offsets_text: `40001`, `40001 or 30001`.
 local function offsets_text(offsets)
@@ -7539,7 +7541,7 @@ end
 M.PLC_LABELS, M.address_name, M.address_runs, M.build_device = PLC_LABELS, address_name, address_runs, build_device
 M.check_references, M.consecutive, M.copied, M.device_for = check_references, consecutive, copied, device_for
 M.device_of, M.has_note, M.interpret, M.interpret_wide = device_of, has_note, interpret, interpret_wide
-M.layered_rows, M.rows_for, M.span_name = layered_rows, rows_for, span_name
+M.layered_rows, M.rows_before, M.rows_for, M.span_name = layered_rows, rows_before, rows_for, span_name
 end
 
 -- ---- vw3.story: lua/src/story.lua ----
@@ -7551,8 +7553,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local PLC_LABELS, address_name, address_runs, concat = PLC_LABELS, address_name, address_runs, concat
 local consecutive, has_note, interpret, interpret_wide = consecutive, has_note, interpret, interpret_wide
-local ipairs, math, next, note, rows_for, say, span_name = ipairs, math, next, note, rows_for, say, span_name
-local table = table
+local ipairs, math, next, note, rows_before, rows_for, say = ipairs, math, next, note, rows_before, rows_for, say
+local span_name, table = span_name, table
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
@@ -7663,12 +7665,6 @@ local function words_at(rows, address, index, count)
   if row ~= nil and row.words == 2 and index + 1 < count then return 2 end
   local before = index > 0 and rows[(address + 0xFFFF) % 0x10000]
   return before and before.words == 2 and 0 or 1
-end
-
--- The 32-bit row whose second register `address` is (naming.wide_before), or false.
-local function rows_before(rows, address)
-  local before = rows[(address + 0xFFFF) % 0x10000]
-  return before ~= nil and before.words == 2 and before
 end
 
 -- The bits_depend rule under which the register at `address` (its map row `row`) is read with its plain

@@ -39,7 +39,6 @@ from dissector.errors import ProfileError
 from dissector.devices.readfile import read_capped
 from dissector.protocol.printable import printable
 from dissector.protocol.rules import text as say_text
-import collections
 import csv
 import math
 import re
@@ -376,11 +375,10 @@ def parse_map(text: str, origin: str) -> RegisterMap:
     text = text.removeprefix("\ufeff")  # the BOM Excel writes in "CSV UTF-8"
     delimiter = ","
     rows: RegisterMap = {}
-    # By table (id: the rows, or a reference map's inputs): address -> the line that named it
-    first_line: dict[int, dict[int, int]] = collections.defaultdict(dict)
-    references: dict[tuple[int, int], str] = {}  # (table, address) -> the reference that named it first
-    named: dict[str, tuple[int, int]] = {}  # code, ASCII case folded as --watch matches it -> (table, address)
-    wide: list[tuple[RegisterMap, int]] = []  # 32-bit rows: (their table, first register)
+    # By table ("holding": the rows; "input": a reference map's 3X rows): address -> (its line, its reference)
+    first_line: dict[str, dict[int, tuple[int, str]]] = {"holding": {}, "input": {}}
+    named: dict[str, tuple[str, int]] = {}  # code, ASCII case folded as --watch matches it -> (table, address)
+    wide: list[tuple[str, int]] = []  # 32-bit rows: (their table, first register)
     for number, line in enumerate(text.splitlines(), start=1):
         stripped = line.strip(_SPACE)
         if not stripped or stripped.startswith("#"):
@@ -423,37 +421,31 @@ def parse_map(text: str, origin: str) -> RegisterMap:
             row = _row(values)
         except ValueError as error:
             raise ProfileError(f"{origin}:{number}: {error}") from None
-        table = rows
-        if isinstance(rows, ReferenceRows) and reference_table(reference) == "input":
-            table = rows.inputs
-        lines = first_line[id(table)]
-        if row.address in table and isinstance(rows, ReferenceRows):
-            raise ProfileError(f"{origin}:{number}: " + _say(
-                "reference_twice", text=reference, table=reference_table(reference), address=row.address,
-                first=references[(id(table), row.address)], line=lines[row.address]))
+        kind = reference_table(reference) if isinstance(rows, ReferenceRows) else "holding"
+        table = rows.inputs if kind == "input" else rows  # type: ignore[attr-defined]
+        lines = first_line[kind]
         if row.address in table:
-            raise ProfileError(
-                f"{origin}:{number}: " + _say("address_twice", address=row.address, line=lines[row.address])
-            )
+            line, first = lines[row.address]
+            raise ProfileError(f"{origin}:{number}: " + (_say(
+                "reference_twice", text=reference, table=kind, address=row.address, first=first, line=line)
+                if isinstance(rows, ReferenceRows) else _say("address_twice", address=row.address, line=line)))
         folded = row.code.translate(_UPPER)
         if folded in named:
-            first_table, first = named[folded]
+            first_kind, first = named[folded]
             raise ProfileError(f"{origin}:{number}: " + _say(
-                "code_twice", code=row.code, address=first, line=first_line[first_table][first]))
+                "code_twice", code=row.code, address=first, line=first_line[first_kind][first][0]))
         table[row.address] = row
-        lines[row.address] = number
-        if isinstance(rows, ReferenceRows):
-            references[(id(table), row.address)] = reference
-        named[folded] = (id(table), row.address)
+        lines[row.address] = (number, reference)
+        named[folded] = (kind, row.address)
         if row.words == 2:
-            wide.append((table, row.address))
-    for table, first in wide:
-        second = first + 1
+            wide.append((kind, row.address))
+    for kind, first in wide:
+        table = rows.inputs if kind == "input" else rows  # type: ignore[attr-defined]
+        lines, second = first_line[kind], first + 1
         if second in table:
-            lines = first_line[id(table)]
-            raise ProfileError(f"{origin}:{lines[second]}: " + _say(
+            raise ProfileError(f"{origin}:{lines[second][0]}: " + _say(
                 "second_register", address=second, code=table[first].code, kind=table[first].kind,
-                line=lines[first]))
+                line=lines[first][0]))
     if header is None:
         raise ProfileError(f"{origin}: " + _say("no_header"))
     return rows

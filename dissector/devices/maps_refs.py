@@ -17,6 +17,7 @@ from typing import Sequence
 from dissector.devices.annotator import Annotator, MapLayer
 from dissector.devices.device import Device
 from dissector.devices.maps import MESSAGES, ReferenceRows, RegisterMap
+from dissector.devices.naming import wide_before
 from dissector.model import Frame, RegisterList
 from dissector.protocol.printable import printable
 
@@ -41,10 +42,7 @@ def reference_base(device: Device, function: int) -> int:
 
 def names(rows: RegisterMap, address: int) -> bool:
     """A map names this register: a row of its own, or the second word of a 32-bit row."""
-    if address in rows:
-        return True
-    before = rows.get(address - 1)
-    return before is not None and before.words == 2
+    return address in rows or wide_before(rows, address) is not None
 
 
 def offsets_text(offsets: Sequence[int]) -> str:

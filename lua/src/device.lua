@@ -115,12 +115,14 @@ local function reference_check(profile, slave)
   return { frames = 0, layers = layers, left = #layers }
 end
 
--- maps_refs.names: a map names this register, a row of its own or a 32-bit row's second word.
-local function map_names(rows, address)
-  if rows[address] ~= nil then return true end
-  local before = rows[address - 1]
-  return before ~= nil and before.words == 2
+-- The 32-bit row whose second register `address` is (naming.wide_before), or false.
+local function rows_before(rows, address)
+  local before = rows[(address + 0xFFFF) % 0x10000]
+  return before ~= nil and before.words == 2 and before
 end
+
+-- maps_refs.names: a map names this register, a row of its own or a 32-bit row's second word.
+local function map_names(rows, address) return rows[address] ~= nil or rows_before(rows, address) ~= false end
 
 -- maps_refs.offsets_text: `40001`, `40001 or 30001`.
 local function offsets_text(offsets)

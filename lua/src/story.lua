@@ -115,12 +115,6 @@ local function words_at(rows, address, index, count)
   return before and before.words == 2 and 0 or 1
 end
 
--- The 32-bit row whose second register `address` is (naming.wide_before), or false.
-local function rows_before(rows, address)
-  local before = rows[(address + 0xFFFF) % 0x10000]
-  return before ~= nil and before.words == 2 and before
-end
-
 -- The bits_depend rule under which the register at `address` (its map row `row`) is read with its plain
 -- layout now (the register it depends on last held a value that says so), or nil.
 function story.plain_rule(device, address, row)
