@@ -80,7 +80,7 @@ from typing import Any, Protocol
 
 from dissector.devices.maps import interpret_wide
 from dissector.devices.memory import masked_value
-from dissector.devices.profiles import device_tables, load_profile_map
+from dissector.devices.profiles import HOLDING_REGISTERS, device_tables, load_profile_map
 from dissector.model import Frame, Item, Kind, Register
 from dissector.protocol.rules import Confirm, confirmed_by
 from dissector.protocol.table import confirmed_registers, register_reads, register_writes
@@ -507,7 +507,7 @@ class History:
             for listener in listeners:
                 listener.provisional(frame, register, told)
 
-    def _values(self, slave: int, registers: Any, counted: bool = True, function: int = 3) -> Any:
+    def _values(self, slave: int, registers: Any, function: int, counted: bool = True) -> Any:
         """The registers as the parameters' values: a 32-bit value once, its first register with the word
         pair as its value; a word of a 32-bit row without the other left out (counted in half_values
         when `counted`). The registers as they are when the slave's map has no 32-bit row."""
@@ -566,7 +566,7 @@ class History:
             return namer
         device = self._device(slave)
 
-        def name(address: int, value: int, table: int = 0) -> Any:  # (table: the parameter's, HOLDING 0)
+        def name(address: int, value: int, table: int = HOLDING_REGISTERS) -> Any:  # (table: the parameter's)
             row = device.table_rows(table).get(address)
             if row is None or row.words != 2:
                 return namer(address, value, table)
