@@ -41,7 +41,7 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
     made (Source.recorded_until: the other interfaces' records too); `again`: the same input opened anew,
     for profile `auto` to read it twice (None: standard input, a FIFO, --hex: not read twice); `units`: its
     records' time units a second, whose precision the time column shows (None: not a pcap or pcapng)."""
-    from dissector.app.preselect import rereadable
+    from dissector.sources.common import rereadable
 
     captures = group_files(args.files)
     several = several_captures(args)
@@ -91,7 +91,7 @@ def time_units(source: Any, buses: list[PacketInterface], bus: PacketInterface |
     if buses:
         return (bus or buses[0]).interface.units
     if source.format in ("hexdump", "traffic"):
-        from dissector.app.preselect import rereadable
+        from dissector.sources.common import rereadable
 
         return NANOS if path != "-" and rereadable(path) and _text_nanoseconds(path, fmt) else None
     return source.time_units
@@ -114,7 +114,7 @@ def _open_input(files: tuple[str, ...], bus: PacketInterface | None, args: Decod
 
 
 def is_pcapng_file(path: str) -> bool:
-    from dissector.app.preselect import rereadable
+    from dissector.sources.common import rereadable
 
     if not rereadable(path):  # (standard input, a FIFO: its bytes are the decode's, and it is one stream)
         return False
@@ -130,7 +130,7 @@ def write_interface(path: str | None, source_format: str | None, args: DecodeOpt
     """The interface the -w file says its records were captured on: the input pcapng's (name and
     description, as editcap and tshark -w keep them; `bus`: the one interface decoded, of several), its
     description replaced by the speed decoded at when --baud is typed (framing/linespeed.py reads it back)."""
-    from dissector.app.preselect import rereadable
+    from dissector.sources.common import rereadable
 
     kept = pcapng_interface(path) if rereadable(path) and source_format == "pcapng" else None  # (not a FIFO)
     if bus is not None:
@@ -147,7 +147,7 @@ def write_units(paths: list[str], stdin: Any = None, fmt: str | None = None) -> 
     read to the nanosecond; a timed text whose first lines' times have nanoseconds, `date +%s.%N`), as
     tshark -w and editcap keep them; microseconds otherwise. Standard input is judged by what it holds
     already (peek: nothing read), its first interfaces; a FIFO is not read (microseconds)."""
-    from dissector.app.preselect import rereadable
+    from dissector.sources.common import rereadable
 
     for path in paths:
         if path == "-":
@@ -375,7 +375,7 @@ def choose_over_all(args: DecodeOptions, env: Any, annotate: Any) -> bool:
     whatever the files' order; a file decoded before the evidence of a later one was named by its own
     alone. False (each input chooses before its own decode): one input, standard input or a FIFO among
     them, or a pcapng's several interfaces (a device each: their own choices)."""
-    from dissector.app.preselect import rereadable
+    from dissector.sources.common import rereadable
 
     if getattr(annotate, "selector", None) is None or not several_captures(args) \
             or not all(map(rereadable, args.files)):  # (before any is opened: standard input is read once)
@@ -427,7 +427,7 @@ def holds_ascii(path: str) -> bool:
     """Whether the start of a file read as RTU holds a whole Modbus ASCII frame (an ASCII line behind more
     noise than mode detection samples): the hint names --mode ascii. Standard input, a FIFO cannot be read
     again (opened again, a FIFO would wait for a writer)."""
-    from dissector.app.preselect import rereadable
+    from dissector.sources.common import rereadable
     from dissector.protocol.ascii import holds_frame
 
     if not rereadable(path):

@@ -16,8 +16,6 @@ the choice are marked provisional (Frame.provisional: `[provisional]`, `"provisi
 """
 from __future__ import annotations
 
-import os
-import stat
 from collections.abc import Callable, Iterable
 
 from dissector.decode.fields import decode_frame
@@ -29,16 +27,6 @@ from dissector.model import Chunk, Frame, Item
 from dissector.protocol import table
 
 _OBJECTS = frozenset(entry.code for entry in table.FUNCTIONS if entry.response.name == "mei_response")
-
-
-def rereadable(path: str | None) -> bool:
-    """A path whose bytes a second open gives again (a regular file; not stdin, a FIFO or a device)."""
-    if path is None or path == "-":
-        return False
-    try:
-        return stat.S_ISREG(os.stat(path).st_mode)
-    except OSError:
-        return False
 
 
 def choose_profiles(

@@ -149,13 +149,18 @@ class Input:
         return skipped
 
 
-def rereadable(inp: Input) -> bool:
-    """Is the input a file (its bytes all there), not a live feed (a pipe, a terminal): can a reader look
-    ahead without waiting? A compressed file's descriptor is the file's own."""
+def rereadable(source: Input | str | None) -> bool:
+    """Bytes all there, to read again or ahead without waiting: a regular file, by its path (a second open
+    gives them again; not stdin `-`, a FIFO or a device) or open as an Input (a compressed file's descriptor
+    is the file's own; bytes in memory when seekable), not a live feed (a pipe, a terminal)."""
+    if source is None or source == "-":
+        return False
     try:
-        return stat.S_ISREG(os.fstat(inp.stream.fileno()).st_mode)
+        if isinstance(source, str):
+            return stat.S_ISREG(os.stat(source).st_mode)
+        return stat.S_ISREG(os.fstat(source.stream.fileno()).st_mode)
     except (AttributeError, OSError, ValueError):  # (no descriptor: bytes in memory)
-        seekable = getattr(inp.stream, "seekable", None)
+        seekable = None if isinstance(source, str) else getattr(source.stream, "seekable", None)
         return bool(seekable and seekable())
 
 

@@ -6,7 +6,7 @@ Before, `-w` read the FIFO's head for the pcapng interface to keep (inputs.write
 units (inputs.write_units); profiles (no -n) its magic for a pcapng's buses (inputs.is_pcapng_file); the
 line speed its first interface (sources/pcapng.first_interface); and a FIFO of no valid frame was opened
 again after the decode for the --mode ascii hint (inputs.holds_ascii): each hung until killed. Now each asks
-preselect.rereadable first, as profile auto does.
+sources.common.rereadable first, as profile auto does.
 """
 from __future__ import annotations
 
