@@ -14,6 +14,7 @@ from dissector.framing.offsets import Offsets
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming, may_pause, silence_before, silences_inside
 from dissector.model import Chunk, Frame, Item, Kind, Noise
 from dissector.protocol.rules import awaits_answer, echoed
+from dissector.sources.common import PartChunk
 from dissector.sources.serial_times import ByteTimedChunk, ByteTimes
 
 NOISE_ITEM_MAX = 4096  # noise runs are cut into items of this size: memory stays bounded on garbage
@@ -25,6 +26,8 @@ _GLITCHES = bytes(sorted(GLITCH_BYTES))
 GLITCH_RUN = 16  # the longest run of glitch bytes between two frames that says the line leaves glitches
 GLITCHY_AFTER = 3
 GLITCH_SCORE_MAX = 8
+# The reason of the item a record captured in part is (StreamFramer._cut_part); lua/src/stream.lua says the same.
+CAPTURED_IN_PART = "captured in part"
 
 
 class StreamFramer(ABC):
@@ -82,8 +85,11 @@ class StreamFramer(ABC):
         self._pause: int | None = None
         self._framed_end = -1  # absolute offset where the last frame ends (-1: none yet): a bound (bounded.py)
         self._cut_by_silence = False  # finish(silence=True) runs: what it cuts, a silence cuts
+        self._ready: list[Item] = []  # items made where no call gives them out (take_over's cut), for the next
 
     def feed(self, chunk: Chunk) -> list[Item]:
+        if type(chunk) is PartChunk and chunk.data:
+            return self._cut_part(chunk)
         if chunk.data:
             start = self._base + len(self._buf)
             byte_times = chunk.times if isinstance(chunk, ByteTimedChunk) else None
@@ -105,14 +111,49 @@ class StreamFramer(ABC):
             if chunk.boundary:
                 self._boundaries.add(self._base + len(self._buf))
                 self._record_starts.add(start)
-        return self._run(final=False)
+        return self._given(self._run(final=False))
+
+    def _given(self, items: list[Item]) -> list[Item]:
+        """`items`, after those made before them that no call could give out (take_over's)."""
+        if self._ready:
+            items[:0] = self._ready
+            self._ready = []
+        return items
+
+    def _cut_part(self, chunk: PartChunk) -> list[Item]:
+        """A record captured in part: the line's bytes after it were lost. What came before it is closed (no frame
+        goes on into it), its bytes are one item that says so (no CRC or LRC can be checked on a frame cut
+        short; what its bytes tell, _part_fields), and the next record's bytes frame from a clean start (none
+        awaited, as after a hand-over). Without the cut, its bytes and the next record's made a frame with a
+        bad CRC and noise (editcap -s 5 on a real capture)."""
+        items = self._given(self._run(final=True))
+        self._flush_noise(items)
+        start = self._base + len(self._buf)  # (the buffer is empty unless paused: finish consumes it)
+        data = bytes(chunk.data)
+        reason = (f"{CAPTURED_IN_PART} ({chunk.captured} of its {chunk.original} bytes{self._part_fields(data)}): "
+                  f"its {'LRC' if self.mode == 'ascii' else 'CRC'} cannot be checked")
+        if chunk.time is not None:
+            self._timed = True
+        items.append(Noise(offset=start, raw=data, time=chunk.time, reason=reason))
+        end = start + len(data)
+        self.restart_at(end, None)
+        self._framed_end = -1  # (no frame ends there: the next record starts at a boundary)
+        self._times = [(start, chunk.time, None)]
+        self._boundaries.add(end)
+        return items
+
+    def _part_fields(self, data: bytes) -> str:
+        """What the bytes of a frame cut short tell: `; slave 2, function 3` (RTU; ascii.py reads its hex)."""
+        if not data:
+            return ""
+        return f"; slave {data[0]}" + (f", function {data[1]}" if len(data) > 1 else "")
 
     def finish(self, silence: bool = False) -> list[Item]:
         """Close what is buffered; `silence`: live closes it at a silence on the line, and the capture goes on
         (a frame cut there is cut by the silence, not by the end of the capture: rules.Awaiting._cut_reason)."""
         self._cut_by_silence = silence
         try:
-            items = self._run(final=True)
+            items = self._given(self._run(final=True))
         finally:
             self._cut_by_silence = False
         self._flush_noise(items)
@@ -132,7 +173,7 @@ class StreamFramer(ABC):
     @property
     def idle(self) -> bool:
         """No noise run is being built: what was framed so far has all been given out."""
-        return not self._noise
+        return not self._noise and not self._ready
 
     @property
     def held_since(self) -> float | None:
@@ -164,7 +205,14 @@ class StreamFramer(ABC):
     def take_over(self, offset: int, expect: tuple[int, int] | None, chunk_start: int, chunk: Chunk) -> None:
         """restart_at(offset) inside `chunk`, which starts at stream offset chunk_start: the bytes of it
         from offset on are buffered as its feed() left them (its time, the record's end), so that the
-        chunks fed after it are timed and weighed as if the stream had never changed hands."""
+        chunks fed after it are timed and weighed as if the stream had never changed hands. A record captured in
+        part is cut as feed() cuts it (its item given out with the next call's)."""
+        if type(chunk) is PartChunk and offset < chunk_start + len(chunk.data):
+            self.restart_at(offset, expect)
+            part = chunk.data[offset - chunk_start :]
+            self._ready += self._cut_part(PartChunk(part, chunk.time, True, chunk.record, chunk.comments,
+                                                    chunk.captured, chunk.original))
+            return
         self.restart_at(offset, expect)
         self._timed = self._timed or chunk.time is not None
         byte_times = chunk.times if isinstance(chunk, ByteTimedChunk) else None
