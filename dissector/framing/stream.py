@@ -55,9 +55,10 @@ class StreamFramer(ABC):
         # Where a silence of t3.5 or more is (kept apart from the record ends): noise bytes after one cannot be
         # the same frame's as the ones before, so a noise run is given out as one item per stretch between them.
         self._silences = Offsets()
-        # A record end's answer to rtu.py _ends_record, with the state it was given in (the stream's end, the
-        # answer awaited): each CRC scan weighs the record ends ahead of it, asked again for every start.
-        self._ends_memo: dict[int, tuple[tuple[int, tuple[int, int] | None, bytes], bool]] = {}
+        # A record end's answer to reach.py _ends_record, with the state it was given in (the stream's end, the
+        # answer awaited, its echo) and the stream's end up to which it holds: each CRC scan weighs the record ends
+        # ahead of it, asked again for every start (reach.py _framed_reach).
+        self._ends_memo: dict[int, tuple[int, tuple[int, int] | None, bytes, bool, int]] = {}
         self._noise = bytearray()
         self._noise_offset = 0
         self._noise_reason = ""
