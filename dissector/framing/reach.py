@@ -7,6 +7,10 @@ ends_record's `settled`): one-byte records asked every record end ahead again fo
 """
 from __future__ import annotations
 
+from bisect import bisect_left
+from heapq import heappop, heappush
+
+from dissector.framing.offsets import EndAnswers
 from dissector.framing.rules import MAX_ADU, MIN_ADU, NEED, NONE, Scan, _crc_ok
 
 SETTLED = 1 << 62  # (a buffer length no stream reaches: no more bytes change the answer)
@@ -65,17 +69,57 @@ class RecordEnds:
         """Where a CRC scan from i stops: the first record (or bytes after a silence) after i that is a frame of
         its own (_ends_record), else n. Across it a scan read noise and that frame as one frame (its CRC
         matching by chance) and waited for MAX_ADU bytes, holding later records in one pass."""
-        base, memo = self._base, self._ends_memo
-        last, expect, echo = base + n, self._expect, self._echo  # (what the answer depends on, besides the bytes)
-        if len(memo) > 4 * MAX_ADU:
-            memo.clear()
-        # (in ascending order: the first that is a frame of its own is the reach; an answer is asked again when the
-        # stream grew past what it holds for: one-byte records asked every record end ahead again for each byte)
-        for offset in self._boundaries.within(base + i + 1, base + min(n - MIN_ADU + 1, i + MAX_ADU)):
-            known = memo.get(offset)
-            if known is None or known[1] != expect or known[2] != echo or not known[0] <= last < known[4]:
-                answer, until = self._record_end(buf, offset - base, n)
-                known = memo[offset] = (last, expect, echo, answer, base + until)
-            if known[3]:
-                return offset - base
-        return n
+        base, ends = self._base, self._ends_memo
+        last, state = base + n, (self._expect, self._echo)
+        low, high = base + i + 1, base + min(n - MIN_ADU + 1, i + MAX_ADU)  # (the record ends weighed: low..high-1)
+        if last < ends.last or len(ends.answers) > 4 * MAX_ADU and not ends.prune(base, 4 * MAX_ADU):
+            ends.reset(state)
+        elif ends.state != state:
+            # (the answer awaited and its echo weigh the record ends that start as it does alone: _awaited)
+            for key in {ends.state[0], state[0]} - {None}:
+                for offset in ends.starts.pop(key, ()):
+                    if ends.answers.pop(offset, None) is not None and offset > base:
+                        self._answer_end(ends, buf, offset, n)
+            ends.state = state
+        ends.last = last
+        expiry, answers = ends.expiry, ends.answers
+        while expiry and expiry[0][0] <= last:  # (answers the bytes come since may change: asked again)
+            until, offset = heappop(expiry)
+            if answers.get(offset, (False, -1, None))[1] == until:
+                if offset > base:
+                    self._answer_end(ends, buf, offset, n)
+                else:  # (bytes framed since: never weighed again)
+                    del answers[offset]
+        if high > low:
+            if ends.low <= low <= ends.high or ends.low <= high <= ends.high:
+                missing = [(low, ends.low), (ends.high, high)]
+                ends.low, ends.high = min(low, ends.low), max(high, ends.high)
+            else:
+                missing = [(low, high)]
+                ends.low, ends.high = low, high
+            for start, stop in missing:
+                for offset in self._boundaries.within(start, stop):
+                    if offset not in answers:
+                        self._answer_end(ends, buf, offset, n)
+        trues = ends.trues
+        at = bisect_left(trues, low)
+        return trues[at] - base if at < len(trues) and trues[at] < high else n
+
+    def _answer_end(self, ends: EndAnswers, buf: bytearray, offset: int, n: int) -> None:
+        """A record end's answer, kept with the stream end up to which it holds."""
+        base = self._base
+        answer, until = self._record_end(buf, offset - base, n)
+        key = (buf[offset - base], buf[offset - base + 1] & 0x7F)
+        if ends.answers.get(offset, (False, -1, None))[2] != key:
+            ends.starts.setdefault(key, []).append(offset)
+        ends.answers[offset] = (answer, base + until, key)
+        trues = ends.trues
+        at = bisect_left(trues, offset)
+        there = at < len(trues) and trues[at] == offset
+        if answer and not there:
+            trues.insert(at, offset)
+        elif there and not answer:
+            del trues[at]
+        if until < SETTLED:
+            heappush(ends.expiry, (base + until, offset))
+

@@ -10,7 +10,7 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 
 from dissector.framing.answers import answer_length
-from dissector.framing.offsets import Offsets
+from dissector.framing.offsets import EndAnswers, Offsets
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming, may_pause, silence_before, silences_inside
 from dissector.model import Chunk, Frame, Item, Kind, Noise
 from dissector.protocol.rules import awaits_answer, echoed
@@ -58,7 +58,7 @@ class StreamFramer(ABC):
         # A record end's answer to reach.py _ends_record, with the state it was given in (the stream's end, the
         # answer awaited, its echo) and the stream's end up to which it holds: each CRC scan weighs the record ends
         # ahead of it, asked again for every start (reach.py _framed_reach).
-        self._ends_memo: dict[int, tuple[int, tuple[int, int] | None, bytes, bool, int]] = {}
+        self._ends_memo = EndAnswers()
         self._noise = bytearray()
         self._noise_offset = 0
         self._noise_reason = ""
@@ -194,7 +194,7 @@ class StreamFramer(ABC):
         self._boundaries = Offsets()
         self._record_starts = Offsets()
         self._silences = Offsets()
-        self._ends_memo = {}
+        self._ends_memo = EndAnswers()
         self._expect = expect
         self._echo = b""  # (the engine hands over where the frame there is no answer to check: not known)
         self._answer = None
