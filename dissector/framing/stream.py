@@ -127,9 +127,15 @@ class StreamFramer(ABC):
         short; what its bytes tell, _part_fields), and the next record's bytes frame from a clean start (none
         awaited, as after a hand-over). Without the cut, its bytes and the next record's made a frame with a
         bad CRC and noise (editcap -s 5 on a real capture)."""
-        items = self._given(self._run(final=True))
+        # (all of it, as the Python stages alone frame it: a caller taking frames one at a time, pause_at, gets
+        # the items before the cut at once rather than bytes lost under it)
+        pause, self._pause = self._pause, None
+        try:
+            items = self._given(self._run(final=True))
+        finally:
+            self._pause = pause
         self._flush_noise(items)
-        start = self._base + len(self._buf)  # (the buffer is empty unless paused: finish consumes it)
+        start = self._base + len(self._buf)  # (the buffer is empty: finish consumes it)
         data = bytes(chunk.data)
         reason = (f"{CAPTURED_IN_PART} ({chunk.captured} of its {chunk.original} bytes{self._part_fields(data)}): "
                   f"its {'LRC' if self.mode == 'ascii' else 'CRC'} cannot be checked")

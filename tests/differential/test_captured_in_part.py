@@ -161,3 +161,19 @@ def test_engine_hands_a_cut_record_over(block_bytes: int, read_bytes: int, tmp_p
                             "42\tresponse\t", "vw3-decode: warning: record 22: only 6 of its 9 bytes were captured"]
     summary, _framed = engine_output_as_python([str(capture)], monkeypatch)
     assert "CRC BAD" not in summary
+
+
+def test_a_paused_framer_cuts_without_losing_bytes() -> None:
+    """A caller that takes frames one at a time (pause_at: the compiled path's hand-overs) feeding a record
+    captured in part: the bytes before it are framed, none lost under the pause (before the pause was lifted
+    for the cut, the request's 8 bytes were dropped)."""
+    from dissector.framing.rtu import RtuFramer
+    from dissector.model import Chunk
+    from dissector.sources.common import PartChunk
+
+    framer = RtuFramer()
+    framer.pause_at(0)
+    assert framer.feed(Chunk(REQUEST, 1.0, True)) == []
+    items = framer.feed(PartChunk(ANSWER[:5], 1.01, True, 2, (), 5, 9))
+    assert [(item.offset, item.raw) for item in items] == [(0, REQUEST), (8, ANSWER[:5])]
+    assert items[1].reason == CUT_ANSWER
