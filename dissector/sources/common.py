@@ -248,6 +248,7 @@ def record_chunks(
     """
     remaining = length
     first = True
+    header_size = 0
     while remaining > 0:
         wanted = min(remaining, chunk_size)
         piece = inp.read(wanted)
@@ -266,11 +267,12 @@ def record_chunks(
                 return
             time, size = header
             piece = piece[size:]
+            header_size = size  # (a record captured in part says its serial bytes, as the plugin's tvb holds them)
             if stamped is not None and time is not None:
                 stamped(time)
         first = False
         if piece and remaining == 0 and not cut and original > length:
-            yield PartChunk(piece, time, True, record, (), length, original)
+            yield PartChunk(piece, time, True, record, (), length - header_size, original - header_size)
         elif piece:
             yield Chunk(piece, time, remaining == 0 and not cut)
         if cut:

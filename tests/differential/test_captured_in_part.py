@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from helpers import engine_output_as_python, run_cli
-from part_records import ANSWER, CAPTURES, CUT_ANSWER, CUT_WRITE, REQUEST, raw_pcap, records_of, two_cut
+from part_records import ANSWER, CAPTURES, CUT_ANSWER, CUT_WRITE, REQUEST, raw_pcap, records_of, rtac_two_cut, two_cut
 
 TWO_CUT_LINES = [
     "     1     0.000000   2 request   Read Holding Registers 8401..8402 (2) [no response]  CRC ok",
@@ -177,3 +177,16 @@ def test_a_paused_framer_cuts_without_losing_bytes() -> None:
     items = framer.feed(PartChunk(ANSWER[:5], 1.01, True, 2, (), 5, 9))
     assert [(item.offset, item.raw) for item in items] == [(0, REQUEST), (8, ANSWER[:5])]
     assert items[1].reason == CUT_ANSWER
+
+
+def test_rtac_record_captured_in_part(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """An RTAC serial record captured in part: its reason counts its serial bytes (5 of 9), as the plugin's tvb
+    holds them, not the record's with the 12-byte header the warning counts (17 of 21)."""
+    out, _framed = engine_output_as_python([str(rtac_two_cut(tmp_path))], monkeypatch)
+    assert out.splitlines() == TWO_CUT_LINES + [
+        "vw3-decode: warning: record 2: only 17 of its 21 bytes were captured",
+        "vw3-decode: warning: record 3: only 17 of its 20 bytes were captured",
+    ]
+    out, _framed = engine_output_as_python([str(rtac_two_cut(tmp_path)), "-V"], monkeypatch)
+    assert [line for line in out.splitlines() if line.startswith("    Reason: ")] == [
+        f"    Reason: {CUT_ANSWER}", f"    Reason: {CUT_WRITE}"]

@@ -11,7 +11,7 @@ import pytest
 
 from lua_compare import lua_kind, lua_shown
 from lua_harness import ROOT, assert_as_vw3_decode_in_one_and_two_passes, lua_items, python_items
-from part_records import CUT_ANSWER, CUT_WRITE, raw_pcap, records_of, two_cut
+from part_records import CUT_ANSWER, CUT_WRITE, raw_pcap, records_of, rtac_two_cut, two_cut
 
 LATER = frozenset(["response_frame", "unanswered"])
 
@@ -70,3 +70,12 @@ def test_editcap_snapshot_of_a_real_capture(snap: int, tmp_path: Path) -> None:
     python = [item.data.get("reason", "") for item in python_items(capture)]
     assert cut == [reason for reason in python if reason.startswith("captured in part")]
     assert len(cut) == sum(len(raw) > snap for raw in records_of(ROOT / "captures" / "atv71_commissioning.pcap"))
+
+
+def test_rtac_record_captured_in_part(tmp_path: Path) -> None:
+    """Through Wireshark's RTAC dissector (Decode As rtacser.data -> vw3): the tvb holds the serial bytes, its
+    reported length theirs too, so the reason is vw3-decode's (5 of 9)."""
+    items, _experts, _err = lua_items(rtac_two_cut(tmp_path), "-d", "rtacser.data,vw3", header=0)
+    assert [(item.record, lua_kind(item), item.fields.get("noise.reason", "")) for item in lua_shown(items)] == [
+        (1, "request", ""), (2, "noise", CUT_ANSWER), (3, "noise", CUT_WRITE), (4, "request", ""),
+        (5, "request", ""), (6, "response", "")]

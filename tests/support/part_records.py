@@ -43,3 +43,17 @@ def records_of(path: Path) -> list[bytes]:
         records.append(data[position + 16 : position + 16 + captured])
         position += 16 + captured
     return records
+
+
+def rtac_two_cut(tmp_path: Path) -> Path:
+    """two_cut's records as an RTAC serial tap writes them (linktype 250: a 12-byte header, its own time, before
+    the serial bytes; the record's lengths count it)."""
+    path = tmp_path / "rtac.pcap"
+    records = [(0, 8, REQUEST), (10_000, 9, ANSWER[:5]), (100_000, 8, WRITE[:5]), (110_000, 8, WRITE),
+               (200_000, 8, REQUEST), (210_000, 9, ANSWER)]
+    with path.open("wb") as out:
+        out.write(struct.pack("<IHHiIII", 0xA1B2C3D4, 2, 4, 0, 0, 65535, 250))
+        for micros, original, data in records:
+            full = struct.pack(">IIBBH", T, micros, 0, 0, 0) + data
+            out.write(struct.pack("<IIII", T, micros, len(full), original + 12) + full)
+    return path
