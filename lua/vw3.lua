@@ -4647,7 +4647,7 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local DATA, ECHO_CODES, FRAMING, MAX_ADU, MIN_ADU, NEED = DATA, ECHO_CODES, FRAMING, MAX_ADU, MIN_ADU, NEED
 local NOISE, NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo = NOISE, NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo
 local counted, crc_string_ok, data_bytes, floor, format = counted, crc_string_ok, data_bytes, floor, format
-local math, pairs, type = math, pairs, type
+local ipairs, math, pairs, string, table, type = ipairs, math, pairs, string, table, type
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request): a record that is the usual answer to the
@@ -5020,12 +5020,60 @@ local function repeats(s, b, i, since, n, stop)
   if last + 1 >= stop then return stop, stop end
   return last + 1, stop_at
 end
+
+-- Records captured in part (a snapshot length shorter than the record: editcap -s 5), by number: { captured,
+-- original } lengths, as Wireshark's tvb gives them (tvb:len() below tvb:reported_len(): dissector.lua calls
+-- lane.captured_in_part; proto.init empties the table). Kept by number: a record decoded again is cut again.
+lane.parts = {}
+function lane.captured_in_part(number, captured, original)
+  lane.parts[number] = { captured, original }
+end
+
+-- What the bytes of a frame cut short tell (stream.py _part_fields, ascii.py's): `; slave 2, function 3`.
+local HEX_DIGITS = DATA.ascii.hex_digits
+local function part_fields(s, bytes)
+  if s.mode ~= "ascii" then
+    local slave, code = string.byte(bytes, 1, 2)
+    if slave == nil then return "" end
+    return "; slave " .. slave .. (code ~= nil and ", function " .. code or "")
+  end
+  local fields = {}
+  for _, field in ipairs({ { "slave", 2 }, { "function", 4 } }) do
+    local high, low = string.byte(bytes, field[2], field[2] + 1)
+    if string.byte(bytes, 1) ~= 58 or low == nil or HEX_DIGITS[high] == nil or HEX_DIGITS[low] == nil then break end
+    fields[#fields + 1] = field[1] .. " " .. (HEX_DIGITS[high] * 16 + HEX_DIGITS[low]) -- (58 above: ':')
+  end
+  if fields[1] == nil then return "" end
+  return "; " .. table.concat(fields, ", ")
+end
+
+-- A record captured in part, its bytes after the stream's (records.lua cut_part closed it): its item added to
+-- `items`, whose reason says so (stream.py CAPTURED_IN_PART: no CRC or LRC can be checked on a frame cut short),
+-- and its record table opened (take_items closes it); the stream then starts clean after it, as stream.py
+-- restart_at leaves it: nothing buffered or awaited, the record's end a boundary and its time the last kept.
+local function cut_stream(s, bytes, time, part, number, items)
+  local n, start = #bytes, s.base
+  local copy = {}
+  for k = 1, n do copy[k] = string.byte(bytes, k) end
+  items[#items + 1] = {
+    kind = NOISE, offset = start, length = n, time = time, bytes = copy,
+    reason = "captured in part (" .. part[1] .. " of its " .. part[2] .. " bytes" .. part_fields(s, bytes)
+      .. "): its " .. (s.mode == "ascii" and "LRC" or "CRC") .. " cannot be checked",
+  }
+  s.b, s.n, s.base = {}, 0, start + n
+  s.times, s.boundaries, s.silences = { start, time or false }, { start + n }, {}
+  s.expect, s.echo, s.framed_end = nil, nil, nil
+  s.glitches_only, s.noise_cut = true, false
+  local record = { number = number, start = start, length = n, waiting = nil }
+  s.open[#s.open + 1], s.last = record, record
+  return record
+end
 M.GLITCH, M.REPEAT_PROBE, M.TOO_SHORT, M.add_noise = GLITCH, REPEAT_PROBE, TOO_SHORT, add_noise
 M.add_skipped, M.await_answer, M.awaits_answer = add_skipped, await_answer, awaits_answer
-M.boundary_at, M.cut_reason, M.drop_first, M.emit = boundary_at, cut_reason, drop_first, emit
-M.expect_after, M.first_above, M.first_after, M.flush_noise = expect_after, first_above, first_after, flush_noise
-M.lane, M.no_frame, M.not_the_answer, M.repeats = lane, no_frame, not_the_answer, repeats
-M.silence_after, M.silent_before, M.time_at = silence_after, silent_before, time_at
+M.boundary_at, M.cut_reason, M.cut_stream, M.drop_first = boundary_at, cut_reason, cut_stream, drop_first
+M.emit, M.expect_after, M.first_above, M.first_after = emit, expect_after, first_above, first_after
+M.flush_noise, M.lane, M.no_frame, M.not_the_answer = flush_noise, lane, no_frame, not_the_answer
+M.repeats, M.silence_after, M.silent_before, M.time_at = repeats, silence_after, silent_before, time_at
 M.whole_crc_good = whole_crc_good
 end
 
@@ -8745,13 +8793,13 @@ local CONFIRMED, DATA, ECHO_CODES, FRAMING, KIND_NUMBER = CONFIRMED, DATA, ECHO_
 local NOISE, PROFILES, READS, REQUEST, RESPONSE = NOISE, PROFILES, READS, REQUEST, RESPONSE
 local annotate_with, await_answer, await_echo, bit_slot = annotate_with, await_answer, await_echo, bit_slot
 local build_device, check_references, collectgarbage = build_device, check_references, collectgarbage
-local crc_slot, crc_string_ok, data_bytes, decode_frame = crc_slot, crc_string_ok, data_bytes, decode_frame
-local device_for, device_now, feed, feed_whole, head_slot = device_for, device_now, feed, feed_whole, head_slot
-local ipairs, lane, math, new_state, next, pack, pair = ipairs, lane, math, new_state, next, pack, pair
-local pairs, pcall, put_flat, release_run, remember_writes = pairs, pcall, put_flat, release_run, remember_writes
-local run_slot, sample_mode, span_slot, story, string = run_slot, sample_mode, span_slot, story, string
-local string_of, takes_whole, tostring, type, warn = string_of, takes_whole, tostring, type, warn
-local whole_crc_good = whole_crc_good
+local crc_slot, crc_string_ok, cut_stream, data_bytes = crc_slot, crc_string_ok, cut_stream, data_bytes
+local decode_frame, device_for, device_now, feed = decode_frame, device_for, device_now, feed
+local feed_whole, head_slot, ipairs, lane, math, new_state = feed_whole, head_slot, ipairs, lane, math, new_state
+local next, pack, pair, pairs, pcall, put_flat, release_run = next, pack, pair, pairs, pcall, put_flat, release_run
+local remember_writes, run_slot, sample_mode, span_slot = remember_writes, run_slot, sample_mode, span_slot
+local story, string, string_of, takes_whole, tostring, type = story, string, string_of, takes_whole, tostring, type
+local warn, whole_crc_good = warn, whole_crc_good
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -9200,6 +9248,13 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
   return record, f.info
 end
 
+local function cut_part(st, bytes, time, number, part) -- (captured in part: stream.lua cut_stream, after a final run)
+  local items = feed(st, "", nil, false, true)
+  local record = cut_stream(st, bytes, time, part, number, items)
+  take_items(st, items, record, true)
+  return record
+end
+
 dissect_record = function(st, bytes, time, number)
   local n = #bytes
   st.late = nil -- (the record before's, shown with it or never: the quick lanes show no tree)
@@ -9259,6 +9314,7 @@ lane.quick = VW3_QUICK_LANES ~= false
 function lane.decode(st, bytes, n, time, number)
   local slave, code = string.byte(bytes, 1, 2)
   local answer = st.pending ~= nil
+  if lane.parts[number] ~= nil then return cut_part(st, bytes, time, number, lane.parts[number]), n end
   if lane.quick and st.open[1] == nil and st.listening == nil and takes_whole(st, n, slave)
       and (st.expect == slave * 256 + code) == answer then
     local quiet = nil -- (what the lane counts the frame in; nil: profile auto is not in use for the slave)

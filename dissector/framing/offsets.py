@@ -5,6 +5,7 @@ each byte cost the whole buffer's offsets, several times over (hundreds of times
 from __future__ import annotations
 
 from bisect import bisect_left, bisect_right, insort
+from heapq import heapify
 from collections.abc import Iterable, Iterator
 
 
@@ -61,3 +62,40 @@ class Offsets:
         """The offsets o with low <= o < high, in ascending order."""
         ordered = self._ordered
         return ordered[bisect_left(ordered, low) : bisect_left(ordered, high)]
+
+
+class EndAnswers:
+    """The record ends' answers (reach.py RecordEnds._record_end) under one state (the answer awaited, its echo): by offset
+    the answer and the stream end up to which it holds, the offsets answered True in order, a heap of the answers
+    by that end (asked again when the stream reaches it), and the span low..high whose every record end is
+    answered. A scan asks only the answers the bytes come since may change and the record ends new to it: its
+    first frame of its own is the first True in its span (one-byte records: a few answers a byte, not 256)."""
+
+    def __init__(self) -> None:
+        self.reset((None, None))
+
+    def reset(self, state: tuple[tuple[int, int] | None, bytes] | tuple[None, None]) -> None:
+        self.state = state
+        self.last = -1
+        # offset -> (answer, the stream end up to which it holds, the (slave, function) its bytes start with)
+        self.answers: dict[int, tuple[bool, int, tuple[int, int]]] = {}
+        self.trues: list[int] = []
+        self.expiry: list[tuple[int, int]] = []
+        self.starts: dict[tuple[int, int], list[int]] = {}  # (slave, function) -> the record ends starting so
+        self.low = self.high = -1
+
+    def prune(self, base: int, most: int) -> bool:
+        """Forget the answers at or before `base` (bytes framed: never weighed again); False when more than
+        `most` stay (reset then)."""
+        answers = {offset: answer for offset, answer in self.answers.items() if offset > base}
+        if len(answers) > most:
+            return False
+        self.answers = answers
+        self.trues = [offset for offset in self.trues if offset > base]
+        self.expiry = [(until, offset) for until, offset in self.expiry if offset > base]
+        heapify(self.expiry)
+        self.starts = {}
+        for offset, (_answer, _until, key) in answers.items():
+            self.starts.setdefault(key, []).append(offset)
+        self.low, self.high = max(self.low, base + 1), max(self.high, base + 1)
+        return True

@@ -64,6 +64,7 @@ from __future__ import annotations
 from dissector.protocol.crc import crc16, crc_lengths
 from dissector.model import Frame, Item, Kind
 from dissector.framing.bounded import NO_FRAME, TOO_SHORT, Bounded
+from dissector.framing.reach import RecordEnds
 from dissector.framing.evidence import plausible_request as _plausible_request
 from dissector.framing.rules import (  # noqa: F401 (re-exported: the framer's tables, by their old home)
     MAX_ADU,
@@ -120,7 +121,7 @@ REPEAT_WINDOW = 3 * MAX_ADU
 REPEAT_PROBE = 16  # bytes the period is found by (the last ones decided, found again up to MAX_ADU back)
 
 
-class RtuFramer(Bounded, Awaiting, StreamFramer):
+class RtuFramer(RecordEnds, Bounded, Awaiting, StreamFramer):
     """Push parser: feed chunks, collect items. Items come out in stream order, unnumbered."""
 
     mode = "rtu"
@@ -233,45 +234,6 @@ class RtuFramer(Bounded, Awaiting, StreamFramer):
                         return length
         # (up to a record that is a frame, every byte has come: nothing longer to wait for)
         return NEED if reach == n and n - i < MAX_ADU and not final else NONE
-
-    def _ends_record(self, buf: bytearray, i: int, n: int) -> bool:
-        """Does a layout at i check out and end where its record does (a code without a length rule: its CRC
-        checks at the record's end)? The source says a frame ends there: a glitch-byte reading of buf[i] before
-        a longer frame crossing that end is not waited for, which held every later record in a single pass."""
-        for _kind, rule in self._interpretations(buf, i):
-            length = rule(buf, i, n)
-            if type(length) is Scan:
-                end = self._boundaries.first_after(self._base + i, self._base + n)
-                length = end - self._base - i if end is not None and end - self._base - i >= length else NONE
-            if MIN_ADU <= length <= MAX_ADU and i + length <= n and (
-                self._boundary_at(i + length) and _crc_ok(buf, i, length)
-            ):
-                return True
-        return False
-
-    def _crosses_framed_record(self, buf: bytearray, i: int, length: int, n: int) -> bool:
-        """Would a reading at i of `length` bytes (NEED: more than there are) swallow a record (or the bytes after
-        a silence) that is a frame of its own, the first after i (_framed_reach) starting inside it? Then it is
-        none, whether its bytes have come or not: waiting for them (a long answer read from noise, 'ff 01 b0';
-        an FC23 request's byte count) held every later record in one pass, and a damaged reading hid the frame."""
-        return self._framed_reach(buf, i, n) < (n if length == NEED else min(n, i + length))
-
-    def _framed_reach(self, buf: bytearray, i: int, n: int) -> int:
-        """Where a CRC scan from i stops: the first record (or bytes after a silence) after i that is a frame of
-        its own (_ends_record), else n. Across it a scan read noise and that frame as one frame (its CRC
-        matching by chance) and waited for MAX_ADU bytes, holding later records in one pass."""
-        base, memo = self._base, self._ends_memo
-        state = (base + n, self._expect, self._echo)  # (what _ends_record's answer depends on, besides the bytes)
-        if len(memo) > 4 * MAX_ADU:
-            memo.clear()
-        # (in ascending order: the first that is a frame of its own is the reach)
-        for offset in self._boundaries.within(base + i + 1, base + min(n - MIN_ADU + 1, i + MAX_ADU)):
-            known = memo.get(offset)
-            if known is None or known[0] != state:
-                known = memo[offset] = (state, self._ends_record(buf, offset - base, n))
-            if known[1]:
-                return offset - base
-        return n
 
     def _match(self, buf: bytearray, i: int, n: int, final: bool) -> tuple[Kind, int, bool] | int:
         """(kind, length, crc_ok) for a frame at i, NEED, or NONE when i starts no frame."""

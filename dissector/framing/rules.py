@@ -58,6 +58,7 @@ class Scan(int):
     framer shows a damaged frame of that length, or an answer cut by the end of the capture, by it."""
 
     declared = NONE
+    wanted = 0  # where `declared` is NEED: the index (from the frame's start) of the byte the walk stopped short of
 
 
 def _crc_ok(buf: bytes | bytearray, i: int, length: int) -> bool:
@@ -96,9 +97,9 @@ def _mei_objects(position: int, start: int) -> LengthRule:
     CRC match from the list's start (a Scan of start + 2, the CRC), its `declared` the walk's length."""
     minimum = start + 2
 
-    def fallback(declared: int) -> Scan:
+    def fallback(declared: int, wanted: int = 0) -> Scan:
         found = Scan(minimum)
-        found.declared = declared
+        found.declared, found.wanted = declared, wanted
         return found
 
     def rule(buf: bytes | bytearray, i: int, n: int) -> int:
@@ -107,7 +108,7 @@ def _mei_objects(position: int, start: int) -> LengthRule:
         stop = start
         for _ in range(buf[i + position]):
             if i + stop + 1 >= n:
-                return fallback(NEED)
+                return fallback(NEED, stop + 1)
             stop += 2 + buf[i + stop + 1]
             if stop > MAX_ADU:
                 return fallback(NONE)

@@ -10,10 +10,11 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 
 from dissector.framing.answers import answer_length
-from dissector.framing.offsets import Offsets
+from dissector.framing.offsets import EndAnswers, Offsets
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming, may_pause, silence_before, silences_inside
 from dissector.model import Chunk, Frame, Item, Kind, Noise
 from dissector.protocol.rules import awaits_answer, echoed
+from dissector.sources.common import PartChunk
 from dissector.sources.serial_times import ByteTimedChunk, ByteTimes
 
 NOISE_ITEM_MAX = 4096  # noise runs are cut into items of this size: memory stays bounded on garbage
@@ -25,6 +26,8 @@ _GLITCHES = bytes(sorted(GLITCH_BYTES))
 GLITCH_RUN = 16  # the longest run of glitch bytes between two frames that says the line leaves glitches
 GLITCHY_AFTER = 3
 GLITCH_SCORE_MAX = 8
+# The reason of the item a record captured in part is (StreamFramer._cut_part); lua/src/stream.lua says the same.
+CAPTURED_IN_PART = "captured in part"
 
 
 class StreamFramer(ABC):
@@ -52,9 +55,10 @@ class StreamFramer(ABC):
         # Where a silence of t3.5 or more is (kept apart from the record ends): noise bytes after one cannot be
         # the same frame's as the ones before, so a noise run is given out as one item per stretch between them.
         self._silences = Offsets()
-        # A record end's answer to rtu.py _ends_record, with the state it was given in (the stream's end, the
-        # answer awaited): each CRC scan weighs the record ends ahead of it, asked again for every start.
-        self._ends_memo: dict[int, tuple[tuple[int, tuple[int, int] | None, bytes], bool]] = {}
+        # A record end's answer to reach.py _ends_record, with the state it was given in (the stream's end, the
+        # answer awaited, its echo) and the stream's end up to which it holds: each CRC scan weighs the record ends
+        # ahead of it, asked again for every start (reach.py _framed_reach).
+        self._ends_memo = EndAnswers()
         self._noise = bytearray()
         self._noise_offset = 0
         self._noise_reason = ""
@@ -82,8 +86,11 @@ class StreamFramer(ABC):
         self._pause: int | None = None
         self._framed_end = -1  # absolute offset where the last frame ends (-1: none yet): a bound (bounded.py)
         self._cut_by_silence = False  # finish(silence=True) runs: what it cuts, a silence cuts
+        self._ready: list[Item] = []  # items made where no call gives them out (take_over's cut), for the next
 
     def feed(self, chunk: Chunk) -> list[Item]:
+        if type(chunk) is PartChunk and chunk.data:
+            return self._cut_part(chunk)
         if chunk.data:
             start = self._base + len(self._buf)
             byte_times = chunk.times if isinstance(chunk, ByteTimedChunk) else None
@@ -105,14 +112,55 @@ class StreamFramer(ABC):
             if chunk.boundary:
                 self._boundaries.add(self._base + len(self._buf))
                 self._record_starts.add(start)
-        return self._run(final=False)
+        return self._given(self._run(final=False))
+
+    def _given(self, items: list[Item]) -> list[Item]:
+        """`items`, after those made before them that no call could give out (take_over's)."""
+        if self._ready:
+            items[:0] = self._ready
+            self._ready = []
+        return items
+
+    def _cut_part(self, chunk: PartChunk) -> list[Item]:
+        """A record captured in part: the line's bytes after it were lost. What came before it is closed (no frame
+        goes on into it), its bytes are one item that says so (no CRC or LRC can be checked on a frame cut
+        short; what its bytes tell, _part_fields), and the next record's bytes frame from a clean start (none
+        awaited, as after a hand-over). Without the cut, its bytes and the next record's made a frame with a
+        bad CRC and noise (editcap -s 5 on a real capture)."""
+        # (all of it, as the Python stages alone frame it: a caller taking frames one at a time, pause_at, gets
+        # the items before the cut at once rather than bytes lost under it)
+        pause, self._pause = self._pause, None
+        try:
+            items = self._given(self._run(final=True))
+        finally:
+            self._pause = pause
+        self._flush_noise(items)
+        start = self._base + len(self._buf)  # (the buffer is empty: finish consumes it)
+        data = bytes(chunk.data)
+        reason = (f"{CAPTURED_IN_PART} ({chunk.captured} of its {chunk.original} bytes{self._part_fields(data)}): "
+                  f"its {'LRC' if self.mode == 'ascii' else 'CRC'} cannot be checked")
+        if chunk.time is not None:
+            self._timed = True
+        items.append(Noise(offset=start, raw=data, time=chunk.time, reason=reason))
+        end = start + len(data)
+        self.restart_at(end, None)
+        self._framed_end = -1  # (no frame ends there: the next record starts at a boundary)
+        self._times = [(start, chunk.time, None)]
+        self._boundaries.add(end)
+        return items
+
+    def _part_fields(self, data: bytes) -> str:
+        """What the bytes of a frame cut short tell: `; slave 2, function 3` (RTU; ascii.py reads its hex)."""
+        if not data:
+            return ""
+        return f"; slave {data[0]}" + (f", function {data[1]}" if len(data) > 1 else "")
 
     def finish(self, silence: bool = False) -> list[Item]:
         """Close what is buffered; `silence`: live closes it at a silence on the line, and the capture goes on
         (a frame cut there is cut by the silence, not by the end of the capture: rules.Awaiting._cut_reason)."""
         self._cut_by_silence = silence
         try:
-            items = self._run(final=True)
+            items = self._given(self._run(final=True))
         finally:
             self._cut_by_silence = False
         self._flush_noise(items)
@@ -132,7 +180,7 @@ class StreamFramer(ABC):
     @property
     def idle(self) -> bool:
         """No noise run is being built: what was framed so far has all been given out."""
-        return not self._noise
+        return not self._noise and not self._ready
 
     @property
     def held_since(self) -> float | None:
@@ -152,7 +200,7 @@ class StreamFramer(ABC):
         self._boundaries = Offsets()
         self._record_starts = Offsets()
         self._silences = Offsets()
-        self._ends_memo = {}
+        self._ends_memo = EndAnswers()
         self._expect = expect
         self._echo = b""  # (the engine hands over where the frame there is no answer to check: not known)
         self._answer = None
@@ -164,7 +212,14 @@ class StreamFramer(ABC):
     def take_over(self, offset: int, expect: tuple[int, int] | None, chunk_start: int, chunk: Chunk) -> None:
         """restart_at(offset) inside `chunk`, which starts at stream offset chunk_start: the bytes of it
         from offset on are buffered as its feed() left them (its time, the record's end), so that the
-        chunks fed after it are timed and weighed as if the stream had never changed hands."""
+        chunks fed after it are timed and weighed as if the stream had never changed hands. A record captured in
+        part is cut as feed() cuts it (its item given out with the next call's)."""
+        if type(chunk) is PartChunk and offset < chunk_start + len(chunk.data):
+            self.restart_at(offset, expect)
+            part = chunk.data[offset - chunk_start :]
+            self._ready += self._cut_part(PartChunk(part, chunk.time, True, chunk.record, chunk.comments,
+                                                    chunk.captured, chunk.original))
+            return
         self.restart_at(offset, expect)
         self._timed = self._timed or chunk.time is not None
         byte_times = chunk.times if isinstance(chunk, ByteTimedChunk) else None

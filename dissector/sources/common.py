@@ -215,6 +215,17 @@ class NotedChunk(Chunk):
     comments: tuple[str, ...] = ()
 
 
+@dataclass(slots=True)
+class PartChunk(NotedChunk):
+    """The last chunk of a record captured in part (a snapshot length shorter than it: `editcap -s 5`, tshark's
+    `[Packet size limited during capture]`): the line's bytes after it were lost, so the framers cut there
+    (framing/stream.py StreamFramer.feed): its bytes are one item, the next record's frame from a clean start.
+    `captured` and `original` are the record's lengths as its header gives them, as the warning names them."""
+
+    captured: int = 0
+    original: int = 0
+
+
 def record_chunks(
     inp: Input,
     length: int,
@@ -224,6 +235,7 @@ def record_chunks(
     log: WarningLog,
     chunk_size: int,
     stamped: Callable[[Stamp], None] | None = None,
+    original: int = 0,
 ) -> Iterator[Chunk]:
     """The serial bytes of one pcap/pcapng record of `length` captured bytes.
 
@@ -231,10 +243,12 @@ def record_chunks(
     file says); only the last one carries boundary=True. When the input ends inside the record,
     the bytes that are there are still delivered, with a warning and no boundary. `stamped` is given an
     RTAC record's own time, once its header is read: a record of the header alone (an RTAC event: a
-    break, a control line) yields no chunk, yet says the tap was recording then (recorded_until).
+    break, a control line) yields no chunk, yet says the tap was recording then (recorded_until). A record
+    captured in part (`original`, its length on the line, more than `length`) ends in a PartChunk.
     """
     remaining = length
     first = True
+    header_size = 0
     while remaining > 0:
         wanted = min(remaining, chunk_size)
         piece = inp.read(wanted)
@@ -253,10 +267,13 @@ def record_chunks(
                 return
             time, size = header
             piece = piece[size:]
+            header_size = size  # (a record captured in part says its serial bytes, as the plugin's tvb holds them)
             if stamped is not None and time is not None:
                 stamped(time)
         first = False
-        if piece:
+        if piece and remaining == 0 and not cut and original > length:
+            yield PartChunk(piece, time, True, record, (), length - header_size, original - header_size)
+        elif piece:
             yield Chunk(piece, time, remaining == 0 and not cut)
         if cut:
             return

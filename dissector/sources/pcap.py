@@ -175,7 +175,7 @@ class PcapRecords:
                 )
             time = None if corrupt else Stamp.from_parts(seconds, fraction, self.units)
             chunks = record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size,
-                                   self._stamped if self.linktype == LINKTYPE_RTAC_SERIAL else None)
+                                   self._stamped if self.linktype == LINKTYPE_RTAC_SERIAL else None, original)
             epoch = not (seconds or fraction)
             if not epoch and not corrupt and self.linktype != LINKTYPE_RTAC_SERIAL:  # (an RTAC's is in its bytes)
                 self.recorded_until = time
@@ -187,7 +187,8 @@ class PcapRecords:
                 self.holding = False
             if epoch and self.linktype != LINKTYPE_RTAC_SERIAL:
                 # (-w's untimed record: see EpochRecord; an RTAC record carries its own time)
-                chunks = record_chunks(inp, captured, None, self.linktype, self.record, log, self.chunk_size)
+                chunks = record_chunks(inp, captured, None, self.linktype, self.record, log, self.chunk_size,
+                                       original=original)
             yield from chunks
 
 

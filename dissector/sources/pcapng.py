@@ -16,7 +16,7 @@ import os
 import stat
 import struct
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import (
@@ -25,6 +25,7 @@ from dissector.sources.common import (
     LINKTYPE_USER0,
     Input,
     NotedChunk,
+    PartChunk,
     SourceError,
     WarningLog,
     check_linktype,
@@ -345,7 +346,8 @@ class _Reader:
         last: Chunk | None = None
         rtac = self._stamped if interface.linktype == LINKTYPE_RTAC_SERIAL else None
         for chunk in record_chunks(
-            self.inp, captured, time, interface.linktype, self.record, self.record_log, self.chunk_size, rtac
+            self.inp, captured, time, interface.linktype, self.record, self.record_log, self.chunk_size, rtac,
+            original,
         ):
             if last is not None:
                 yield last
@@ -362,7 +364,9 @@ class _Reader:
             read = len(tail)
         else:
             comments, read = (), self.inp.skip(rest)
-        if comments and last is not None:
+        if comments and isinstance(last, PartChunk):  # (captured in part: it stays the framers' cut)
+            last = replace(last, comments=comments)
+        elif comments and last is not None:
             last = NotedChunk(last.data, last.time, last.boundary, self.record, comments)
         elif comments:
             self.unshown += len(comments)

@@ -451,6 +451,13 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
   return record, f.info
 end
 
+local function cut_part(st, bytes, time, number, part) -- (captured in part: stream.lua cut_stream, after a final run)
+  local items = feed(st, "", nil, false, true)
+  local record = cut_stream(st, bytes, time, part, number, items)
+  take_items(st, items, record, true)
+  return record
+end
+
 dissect_record = function(st, bytes, time, number)
   local n = #bytes
   st.late = nil -- (the record before's, shown with it or never: the quick lanes show no tree)
@@ -510,6 +517,7 @@ lane.quick = VW3_QUICK_LANES ~= false
 function lane.decode(st, bytes, n, time, number)
   local slave, code = string.byte(bytes, 1, 2)
   local answer = st.pending ~= nil
+  if lane.parts[number] ~= nil then return cut_part(st, bytes, time, number, lane.parts[number]), n end
   if lane.quick and st.open[1] == nil and st.listening == nil and takes_whole(st, n, slave)
       and (st.expect == slave * 256 + code) == answer then
     local quiet = nil -- (what the lane counts the frame in; nil: profile auto is not in use for the slave)

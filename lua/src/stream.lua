@@ -375,3 +375,51 @@ local function repeats(s, b, i, since, n, stop)
   if last + 1 >= stop then return stop, stop end
   return last + 1, stop_at
 end
+
+-- Records captured in part (a snapshot length shorter than the record: editcap -s 5), by number: { captured,
+-- original } lengths, as Wireshark's tvb gives them (tvb:len() below tvb:reported_len(): dissector.lua calls
+-- lane.captured_in_part; proto.init empties the table). Kept by number: a record decoded again is cut again.
+lane.parts = {}
+function lane.captured_in_part(number, captured, original)
+  lane.parts[number] = { captured, original }
+end
+
+-- What the bytes of a frame cut short tell (stream.py _part_fields, ascii.py's): `; slave 2, function 3`.
+local HEX_DIGITS = DATA.ascii.hex_digits
+local function part_fields(s, bytes)
+  if s.mode ~= "ascii" then
+    local slave, code = string.byte(bytes, 1, 2)
+    if slave == nil then return "" end
+    return "; slave " .. slave .. (code ~= nil and ", function " .. code or "")
+  end
+  local fields = {}
+  for _, field in ipairs({ { "slave", 2 }, { "function", 4 } }) do
+    local high, low = string.byte(bytes, field[2], field[2] + 1)
+    if string.byte(bytes, 1) ~= 58 or low == nil or HEX_DIGITS[high] == nil or HEX_DIGITS[low] == nil then break end
+    fields[#fields + 1] = field[1] .. " " .. (HEX_DIGITS[high] * 16 + HEX_DIGITS[low]) -- (58 above: ':')
+  end
+  if fields[1] == nil then return "" end
+  return "; " .. table.concat(fields, ", ")
+end
+
+-- A record captured in part, its bytes after the stream's (records.lua cut_part closed it): its item added to
+-- `items`, whose reason says so (stream.py CAPTURED_IN_PART: no CRC or LRC can be checked on a frame cut short),
+-- and its record table opened (take_items closes it); the stream then starts clean after it, as stream.py
+-- restart_at leaves it: nothing buffered or awaited, the record's end a boundary and its time the last kept.
+local function cut_stream(s, bytes, time, part, number, items)
+  local n, start = #bytes, s.base
+  local copy = {}
+  for k = 1, n do copy[k] = string.byte(bytes, k) end
+  items[#items + 1] = {
+    kind = NOISE, offset = start, length = n, time = time, bytes = copy,
+    reason = "captured in part (" .. part[1] .. " of its " .. part[2] .. " bytes" .. part_fields(s, bytes)
+      .. "): its " .. (s.mode == "ascii" and "LRC" or "CRC") .. " cannot be checked",
+  }
+  s.b, s.n, s.base = {}, 0, start + n
+  s.times, s.boundaries, s.silences = { start, time or false }, { start + n }, {}
+  s.expect, s.echo, s.framed_end = nil, nil, nil
+  s.glitches_only, s.noise_cut = true, false
+  local record = { number = number, start = start, length = n, waiting = nil }
+  s.open[#s.open + 1], s.last = record, record
+  return record
+end
