@@ -9502,6 +9502,7 @@ function proto.init()
   -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
   -- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
   rtac_times = {}
+  lane.parts = {} -- (records captured in part, by number: stream.lua lane.captured_in_part)
   apply_prefs()
   -- Streams of records: the serial capture's (state); the others (one per UDP conversation, one per TCP
   -- connection, one per further interface: dissector.lua) in udp_states, which the first pass's end finishes.
@@ -10467,6 +10468,9 @@ local function show_item(st, item, shown_from, tree, pinfo, full, summaries, inf
     -- (a run of the same noise, kept as one entry: its texts made once, for each of its items)
     local bytes = count_text(item.length, "byte")
     local text = format("noise (%s)", bytes) .. (from or "")
+    -- (a record captured in part, stream.lua cut_stream: marked as tshark marks it, `[Packet size limited during
+    -- capture]`, and as vw3-decode's summary line, render/summary.py part_mark)
+    if item.reason:sub(1, 16) == "captured in part" then text = text .. " [" .. item.reason .. "]" end
     local expert_text = format("%s outside any frame: %s", bytes, item.reason)
     for k = 0, (item.count or 1) - 1 do
       local shown = show_noise(item, shown_from, tree, full, k, expert_text)
@@ -10742,6 +10746,10 @@ local function dissect_records(st, tvb, pinfo, tree)
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
     if number <= 2 then epoch_first(st, tvb, pinfo, number) end
+    -- A record captured in part (a snapshot length shorter than it: tshark's `[Packet size limited during
+    -- capture]`) is a cut: records.lua cut_part.
+    local captured, original = tvb:len(), tvb:reported_len()
+    if original > captured then lane.captured_in_part(number, captured, original) end
     -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)
     local ok, result, n, info = pcall(st.sample ~= false and sample_and_dissect or dissect_now, st, tvb, pinfo, number)
     if ok then

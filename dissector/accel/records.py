@@ -7,7 +7,8 @@ take the stream.
 Classic pcap records are read in bulk by the engine's scan_pcap (_records.h), a megabyte at a time,
 as sources/pcap.py reads them; a record that reader must see itself (one captured in part, one longer
 than a chunk: their warnings and splits) and the rest after it go through it. A record captured in part is
-a cut (framing/stream.py _cut_part) the engine does not make: the Python stages frame from its block on. Every other source's
+a cut (framing/stream.py _cut_part) the engine does not make: the Python stages frame across it
+(timedpath.py cut_until). Every other source's
 chunks (pcapng, hex dumps...) are gathered as they come. The silence flag is the framer's own rule
 (timing.silence_before, from the chunk before), so both sides weigh the same boundaries.
 """
@@ -22,7 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 from dissector.framing.timing import LineTiming, silence_before
 from dissector.model import Chunk, Stamp
-from dissector.sources.common import LINKTYPE_USER0, PartChunk
+from dissector.sources.common import LINKTYPE_USER0
 
 if TYPE_CHECKING:
     from dissector.sources.trail import RecordTrail
@@ -76,10 +77,6 @@ class BlockBuilder:
         data = chunk.data
         if not data:
             return
-        if type(chunk) is PartChunk:
-            # (a record captured in part is a cut the engine does not make: the Python stages frame from the
-            # block that holds it on, as from one whose times it cannot subtract: timedpath.py engine_ok)
-            self.exact = False
         time = chunk.time
         flag = RECORD_END if chunk.boundary else 0
         ns = 0

@@ -21,6 +21,7 @@ from typing import Any
 from dissector.accel.fastsummary import NEED, PythonSide, built, forget_changed, make_engine
 from dissector.accel.records import Block
 from dissector.model import Chunk, Item, Stamp
+from dissector.sources.common import PartChunk
 from dissector.pipeline import Dissector
 from dissector.render.pcapwriter import NANOS
 from dissector.render.timefmt import Clock
@@ -66,6 +67,9 @@ class TimedPath:
         self.taken_at = 0
         self.fed = 0  # chunks given to the Python stages (an index into the lists above)
         self.engine_ok = True  # False: a source whose times the engine cannot subtract (plain floats)
+        # The end of the last record captured in part given (a cut the engine does not make: StreamFramer
+        # _cut_part): the Python stages take the stream before it and give it back once past it.
+        self.cut_until = 0
         self.on_hand_back: Callable[[], None] | None = None  # called as the engine takes the stream back
         self.sync_clock = True  # the engine writes the time column: the clock's references go with the stream
         self.numbered = 0  # items numbered before the engine's last run
@@ -88,7 +92,10 @@ class TimedPath:
         self.owners.extend([block] * count)
         self.local.extend(range(count))
         self.engine_ok = self.engine_ok and block.exact
-        if not self.engine_ok and not self.python:
+        for index, chunk in enumerate(block.chunks):  # (none where the engine read the records in bulk)
+            if type(chunk) is PartChunk:
+                self.cut_until = block.starts[index] + len(chunk.data)
+        if (not self.engine_ok or self.cut_until > self.base + self.pos) and not self.python:
             self._hand_over()
         while self._python_frames() if self.python else self._engine_frames():
             pass  # one side gave the stream to the other: go on there
@@ -172,7 +179,7 @@ class TimedPath:
             return False
         side = self.side
         while True:
-            if side.ready() and framer.offset > self.taken_at and self.pairer.idle:
+            if side.ready() and framer.offset > self.taken_at and self.pairer.idle and framer.offset >= self.cut_until:
                 self._forget_changed()
                 offset, rest, expect = framer.hand_back()
                 self.pos = offset - self.base

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from dissector.framing.stream import CAPTURED_IN_PART
 from dissector.model import Frame, Item, Kind, Noise
 from dissector.protocol.rules import TEXTS
 from dissector.render.describe import count_text, info_text
@@ -141,6 +142,13 @@ def noise_info(noise: Noise) -> str:
     return f"{noise_text(noise.length, noise.offset)}: {preview}{more}"
 
 
+def part_mark(noise: Noise) -> str:
+    """` [captured in part (5 of its 9 bytes; slave 2, function 3): its CRC cannot be checked]` on the summary
+    line of a record captured in part (framing/stream.py _cut_part), as tshark marks such a packet `[Packet size
+    limited during capture]`; -V, --json and -T fields give it as the reason."""
+    return f" [{noise.reason}]" if noise.reason.startswith(CAPTURED_IN_PART) else ""
+
+
 _KIND_COLUMN = {kind: f"{kind.value:<9}" for kind in Kind}
 
 
@@ -154,7 +162,7 @@ def summary_line(item: Item, base: float | None = None, column: str | None = Non
     else:
         head = f"{item.number:>6} {time - (base or 0.0):>12.6f}"
     if isinstance(item, Noise):
-        return f"{head}   - noise     {noise_info(item)}"
+        return f"{head}   - noise     {noise_info(item)}{part_mark(item)}"
     frame = item
     tail = tail_text(frame)
     return (
@@ -179,7 +187,7 @@ def summary_text(item: Item, base: float | None = None, column: str | None = Non
     text.append(f"{column if column is not None else time_text(item, base):>12} ", "vw3.time")
     if isinstance(item, Noise):
         text.append("  - noise     ", "vw3.noise")
-        text.append(noise_info(item), "vw3.noise")
+        text.append(noise_info(item) + part_mark(item), "vw3.noise")
         return text
     frame = item
     text.append(f"{frame.slave:>3} ", "vw3.slave")

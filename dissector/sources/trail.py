@@ -70,7 +70,7 @@ class RecordTrail:
             if times:
                 parts.append((offset, chunk.time))
             offset += len(chunk.data)
-            if type(chunk) is NotedChunk:
+            if isinstance(chunk, NotedChunk) and chunk.comments:  # (a PartChunk is one, with comments or none)
                 self._commented.append((start, offset, chunk.comments))
                 self.comments += len(chunk.comments)
                 self.records.append((self.name, chunk.record, len(chunk.comments)))

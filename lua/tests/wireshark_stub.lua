@@ -85,6 +85,7 @@ Field = {
 function stub.tvb(bytes)
   local tvb = { bytes = bytes }
   function tvb:len() return #self.bytes end
+  function tvb:reported_len() return self.reported or #self.bytes end -- (a record captured in part: more)
   function tvb:raw(offset, length)
     offset = offset or 0
     length = length or (#self.bytes - offset)

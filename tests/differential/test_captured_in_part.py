@@ -16,8 +16,8 @@ from part_records import ANSWER, CAPTURES, CUT_ANSWER, CUT_WRITE, REQUEST, raw_p
 
 TWO_CUT_LINES = [
     "     1     0.000000   2 request   Read Holding Registers 8401..8402 (2) [no response]  CRC ok",
-    "     2     0.010000   - noise     5 bytes of noise at offset 8: 02 03 04 00 03",
-    "     3     0.100000   - noise     5 bytes of noise at offset 13: 02 06 20 d1 00",
+    f"     2     0.010000   - noise     5 bytes of noise at offset 8: 02 03 04 00 03 [{CUT_ANSWER}]",
+    f"     3     0.100000   - noise     5 bytes of noise at offset 13: 02 06 20 d1 00 [{CUT_WRITE}]",
     "     4     0.110000   2 request   Write Single Register 8401 = 1 [no response]  CRC ok",
     "     5     0.200000   2 request   Read Holding Registers 8401..8402 (2)  CRC ok",
     "     6     0.210000   2 response  Read Holding Registers 8401..8402 (2): 8401=3 8402=2 [#5, 10.0 ms]  CRC ok",
@@ -78,7 +78,8 @@ def test_ascii_record_captured_in_part(tmp_path: Path, monkeypatch: pytest.Monke
     out, _framed = engine_output_as_python([str(capture), "--mode", "ascii"], monkeypatch)
     assert out.splitlines()[:4] == [
         "     1     0.000000   2 request   Read Holding Registers 8193..8194 (2) [no response]  LRC ok",
-        "     2     0.010000   - noise     7 bytes of noise at offset 17: 3a 30 32 30 33 30 34",
+        "     2     0.010000   - noise     7 bytes of noise at offset 17: 3a 30 32 30 33 30 34 [captured in part (7 of"
+        " its 19 bytes; slave 2, function 3): its LRC cannot be checked]",
         "     3     0.100000   2 request   Read Holding Registers 8193..8194 (2)  LRC ok",
         "     4     0.110000   2 response  Read Holding Registers 8193..8194 (2): 8193=3 8194=2 [#3, 10.0 ms]  LRC ok",
     ]
@@ -95,7 +96,7 @@ def test_editcap_snapshot_of_a_real_capture(output: str, tmp_path: Path, monkeyp
                     str(capture), "1-8"], check=True, capture_output=True)
     out, _framed = engine_output_as_python([str(capture)], monkeypatch)
     lines = out.splitlines()
-    assert lines[:8] == [
+    assert [line[: line.index(" [")] for line in lines[:8]] == [
         "     1     0.000000   - noise     5 bytes of noise at offset 0: 02 2b 0e 01 00",
         "     2     0.010730   - noise     5 bytes of noise at offset 5: 02 2b 0e 01 02",
         "     3     0.046307   - noise     5 bytes of noise at offset 10: 02 03 0c 1e 00",
@@ -105,6 +106,7 @@ def test_editcap_snapshot_of_a_real_capture(output: str, tmp_path: Path, monkeyp
         "     7     0.102650   - noise     5 bytes of noise at offset 30: 02 06 20 d1 00",
         "     8     0.111429   - noise     5 bytes of noise at offset 35: 02 06 20 d1 00",
     ]
+    assert all(line.endswith(": its CRC cannot be checked]") for line in lines[:8])
     reasons = [line[len("    Reason: "):] for line in engine_output_as_python([str(capture), "-V"], monkeypatch)[0]
                .splitlines() if line.startswith("    Reason: ")]
     assert reasons == [
@@ -190,3 +192,14 @@ def test_rtac_record_captured_in_part(tmp_path: Path, monkeypatch: pytest.Monkey
     out, _framed = engine_output_as_python([str(rtac_two_cut(tmp_path)), "-V"], monkeypatch)
     assert [line for line in out.splitlines() if line.startswith("    Reason: ")] == [
         f"    Reason: {CUT_ANSWER}", f"    Reason: {CUT_WRITE}"]
+
+
+@pytest.mark.skipif(shutil.which("editcap") is None, reason="editcap (Wireshark) is not installed")
+def test_comment_on_a_record_captured_in_part(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A pcapng packet comment on a record captured in part stays on its item (before: lost)."""
+    capture = tmp_path / "noted.pcapng"
+    subprocess.run(["editcap", "-F", "pcapng", "-a", "2:a note on the cut answer", str(two_cut(tmp_path)),
+                    str(capture)], check=True, capture_output=True)
+    out, _framed = engine_output_as_python([str(capture), "--json"], monkeypatch)
+    items = [json.loads(line) for line in out.splitlines() if line.startswith("{")]
+    assert [item.get("comments") for item in items] == [None, ["a note on the cut answer"], None, None, None, None]

@@ -79,3 +79,12 @@ def test_rtac_record_captured_in_part(tmp_path: Path) -> None:
     assert [(item.record, lua_kind(item), item.fields.get("noise.reason", "")) for item in lua_shown(items)] == [
         (1, "request", ""), (2, "noise", CUT_ANSWER), (3, "noise", CUT_WRITE), (4, "request", ""),
         (5, "request", ""), (6, "response", "")]
+
+
+def test_info_marks_a_record_captured_in_part(tmp_path: Path) -> None:
+    """The Info column marks it as tshark's mbrtu marks the packet (`[Packet size limited during capture]`) and
+    vw3-decode's summary line does: the reason between brackets."""
+    from lua_compare import tshark_fields
+
+    rows = tshark_fields(two_cut(tmp_path), ["-T", "fields", "-e", "_ws.col.Info"])
+    assert rows[1:3] == [f"noise (5 bytes) [{CUT_ANSWER}]", f"noise (5 bytes) [{CUT_WRITE}]"]
