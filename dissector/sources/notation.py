@@ -4,6 +4,7 @@
     0x0C 0x03, 0x20 0xD0              C, C# and pymodbus: 0x5 is 05, 0x0C03 is 0C 03
     0C:03:20:D0:00:03:0E:EF           colon-separated (ESPHome and many device logs)
     [12, 3, 32, 208, 0, 3, 14, 239]   decimal lists (NModbus, Python and C# byte arrays)
+    [0C][03][20][D0] or <0C><03>...   libmodbus's debug output (mbpoll -v): hex, a byte a bracket
 
 Commas, and one pair of [ ] or { } around the list, are separators. A list is decimal when it cannot
 be hex: some number has 1 or 3 digits (a hex byte has 2). A letter, a 0x, a colon or a group of
@@ -26,6 +27,7 @@ _PREFIXED = re.compile(r"0[xX]([0-9A-Fa-f]{1,2}|(?:[0-9A-Fa-f]{2})+)")
 _COLON = re.compile(r"[0-9A-Fa-f]{2}(?::[0-9A-Fa-f]{2})+")
 _GROUP = re.compile(r"(?:[0-9A-Fa-f]{2})+")
 _SEPARATORS = re.compile(r"[\s,]+")
+_BRACKETED = re.compile(r"(?:\[[0-9A-Fa-f]{2}\])+|(?:<[0-9A-Fa-f]{2}>)+")
 
 
 class NotationError(MalformedInput):
@@ -77,6 +79,8 @@ def _decimal_byte(token: str) -> int:
 def split_list(text: str) -> list[str]:
     """The numbers of a byte list: commas and spaces separate, one [ ] or { } around it is dropped."""
     body = text.strip()
+    if body and all(_BRACKETED.fullmatch(word) for word in body.split()):  # (before a list's [ ] is dropped:
+        return re.findall(r"[0-9A-Fa-f]{2}", body)                            # [01][03] would be 01][03)
     if body[:1] in ("[", "{") and body[-1:] in ("]", "}"):
         body = body[1:-1]
     return [token for token in _SEPARATORS.split(body) if token]
