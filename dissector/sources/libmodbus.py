@@ -8,7 +8,9 @@ prints them while it talks on the bus.
     <01><03><04><00>ERROR Connection timed out: select     (its error, on stderr, after the bytes heard)
 
 A master sends requests and receives answers, a server (`Waiting for an indication...`) the other way
-round, so the brackets do not say what a frame is: the framer does, as for any capture. Each line of
+round, so the brackets do not say what a frame is: the framer does, as for any capture. Told by a line of
+bytes, or before any (a pipe is judged on its first lines) by libmodbus's `Opening /dev/ttyUSB0 at 19200
+bauds (E, 8, 1)` or mbpoll's first line with -v, `debug enabled`. Each line of
 bytes is a record (what the program read as one message: a part of one when it gave up), untimed. A line
 is bytes only when it is all groups of two hex digits in one kind of bracket (an error message may follow
 the bytes heard): `[10]: 	5`, mbpoll's value of reference 10, is not. Other lines are passed over."""
@@ -24,6 +26,9 @@ from dissector.sources.hexdump import StampedLines, cut_short, ended_lines
 _SENT = r"(?:\[[0-9A-Fa-f]{2}\])+"
 _HEARD = r"(?:<[0-9A-Fa-f]{2}>)+"
 _LINE = re.compile(rf"\s*({_SENT}|{_HEARD})(?:\s*|ERROR\b.*)")
+# Lines that come before any frame: libmodbus's opening of an RTU port, mbpoll -v's first line.
+_OPENING = re.compile(r"Opening \S.* at \d+ bauds \([NEO], [5-8], [12]\)\s*")
+_MBPOLL = "debug enabled"
 # The input's last line, cut short inside a group: the whole groups before it are read.
 _CUT = re.compile(rf"\s*({_SENT}|{_HEARD})?(\[[0-9A-Fa-f]?|<[0-9A-Fa-f]?)")
 
@@ -39,7 +44,8 @@ def looks_like_libmodbus(text: str, complete: bool) -> bool:
     lines = text.splitlines()
     if not complete and not text.endswith(("\n", "\r")):
         lines = lines[:-1]
-    return any(line_bytes(line) is not None for line in lines)
+    return (bool(lines) and lines[0].strip() == _MBPOLL) or any(
+        line_bytes(line) is not None or _OPENING.fullmatch(line) for line in lines)
 
 
 def read_libmodbus(inp: Input, log: WarningLog, chunk_size: int) -> StampedLines:

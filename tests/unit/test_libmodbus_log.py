@@ -8,6 +8,9 @@ TRANSCRIPT is mbpoll 1.0-0's (Debian 12) own output, polling slave 12 at 8402 (3
 8401) through a pseudo-terminal whose far end answered: normally, with a bad CRC, with exception 02."""
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -84,6 +87,28 @@ def test_mbpoll_transcript_is_decoded(tmp_path: Path) -> None:
     copy = tmp_path / "poll.pcap"
     assert run_cli(["-n", "-w", str(copy), str(log)])[0] == 0
     assert [len(chunk.data) for chunk in open_source(str(copy))] == [8, 11, 8, 11, 8, 5]
+
+
+@pytest.mark.parametrize("skipped", [0, 19])
+def test_a_pipe_told_by_its_first_lines(skipped: int) -> None:
+    """A pipe is judged on its first 512 bytes (`mbpoll -v ... | vw3-decode -`), mbpoll's own lines: its first,
+    `debug enabled`, tells; so does libmodbus's `Opening /dev/pts/0 at 19200 bauds (E, 8, 1)` (mbpoll's echo of
+    its arguments and banner left out)."""
+    root = Path(__file__).resolve().parents[2]
+    env = {**os.environ, "PYTHONPATH": str(root)}
+    text = "".join(TRANSCRIPT.splitlines(keepends=True)[skipped:])
+    run = subprocess.run([sys.executable, "-m", "dissector", "-n", "-"], input=text.encode(), cwd=root, env=env,
+                         capture_output=True, timeout=120)
+    assert (run.returncode, run.stderr) == (0, b"")
+    assert run.stdout.decode() == "\n".join(DECODED) + "\n"
+
+
+def test_opening_line_tells_before_any_frame() -> None:
+    from dissector.sources.reader import detect_format
+
+    opening = "".join(TRANSCRIPT.splitlines(keepends=True)[19:])
+    assert detect_format(opening[:400].encode(), False) == ("libmodbus", None)  # (its first frame at 435)
+    assert detect_format(TRANSCRIPT[:512].encode(), False) == ("libmodbus", None)  # (mbpoll's `debug enabled`)
 
 
 def test_format_given_for_standard_input() -> None:
