@@ -8,8 +8,9 @@ them (what text2pcap reads back):
 
 Each packet starts at offset 0 and is one record (its bytes, then a frame boundary, as a pcap record),
 untimed, but where the packet's details before its bytes give its time (`tshark -V -x`, Wireshark's Export
-Packet Dissections as plain text: `Epoch Time: 1767225600.010157000 seconds`, 4.2's `Epoch Arrival Time`),
-to the nanosecond, as the pcap it was dissected from had it. A line's offset says where its bytes belong in the packet: one that does not go on where the
+Packet Dissections as plain text: `Epoch Time: 1767225600.010157000 seconds`, 4.2's `Epoch Arrival Time`;
+`vw3-decode -V -x`: `Arrival time: 2026-01-01 00:00:00.010157 UTC`), to the nanosecond, as the capture it
+was dissected from had it. A line's offset says where its bytes belong in the packet: one that does not go on where the
 line before ended is an error (bytes missing or doubled). The character column is ignored. Lines that
 do not start with an offset (tshark -P's and vw3-decode -x's summary lines, blank lines) are passed
 over, as text2pcap passes them over.
@@ -20,8 +21,10 @@ is at offset 0. `0000  0C 03 20 D0` without it stays a hex dump line (bytes 00 0
 """
 from __future__ import annotations
 
+import calendar
 import re
 from collections.abc import Iterator
+from datetime import datetime
 
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import Input, SourceError, WarningLog
@@ -35,6 +38,8 @@ _CUT = re.compile(r"([0-9a-fA-F]{4,8}) {2,3}((?:[0-9a-fA-F]{2} )*)([0-9a-fA-F]?)
 # The frame tree's time of the packet (tshark 4.0 -V: `Epoch Time: S.NNNNNNNNN seconds`; 4.2 on: `Epoch Arrival
 # Time`): the seconds since the epoch, in decimals as the dissector wrote them.
 _EPOCH = re.compile(r"\s*Epoch (?:Arrival )?Time: (-?\d+)(?:\.(\d{1,9}))? seconds\s*")
+# vw3-decode -V's (render/detail_plain.py): the date and time in UTC, then the time column's reading.
+_ARRIVAL = re.compile(r"\s*Arrival time: (\d{4})-(\d\d)-(\d\d) (\d\d):(\d\d):(\d\d)(?:\.(\d{1,9}))? UTC(?: \(.*\))?\s*")
 
 
 def _characters(data: bytes) -> str:
@@ -68,7 +73,16 @@ def looks_like_packet_dump(text: str, complete: bool) -> bool:
 def _epoch(line: str) -> Stamp | None:
     found = _EPOCH.fullmatch(line)
     if found is None:
-        return None
+        arrival = _ARRIVAL.fullmatch(line)
+        if arrival is None:
+            return None
+        try:
+            parts = [int(part) for part in arrival.groups()[:6]]
+            datetime(*parts)  # (a day or an hour that does not exist: no time)
+            seconds = calendar.timegm((*parts, 0, 0, 0))
+        except ValueError:
+            return None
+        return Stamp(seconds * 1_000_000_000 + int((arrival.group(7) or "").ljust(9, "0")))
     seconds, fraction = int(found.group(1)), found.group(2) or ""
     return Stamp(seconds * 1_000_000_000 + (-1 if seconds < 0 else 1) * int(fraction.ljust(9, "0")))
 

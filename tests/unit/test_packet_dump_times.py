@@ -68,3 +68,38 @@ def test_bytes_alone_stay_untimed(tmp_path: Path) -> None:
     export.write_text("".join(line for line in EXPORT.splitlines(keepends=True) if line.startswith("0000")))
     assert run_cli(["-n", str(export)])[1].splitlines()[1] == (
         "     2            -  12 response  Read Holding Registers 8401: 8401=3 [#1]  CRC ok")
+
+
+@pytest.mark.parametrize("capture", ["p38_protection.pcap", "noisy_bus.pcap"])
+def test_own_details_and_bytes_read_back_as_the_capture(capture: str, tmp_path: Path) -> None:
+    """vw3-decode -V -x says each item's `Arrival time: 2026-01-01 00:00:00.010157 UTC (...)`: read back, its
+    items are the capture's, times and response times included (before: untimed, '[#1]')."""
+    from conftest import ROOT
+
+    path = str(ROOT / "captures" / capture)
+    status, dump, err = run_cli(["-V", "-x", path])
+    assert (status, err) == (0, "")
+    export = tmp_path / "details.txt"
+    export.write_text(dump)
+    assert run_cli(["--json", str(export)]) == run_cli(["--json", path])
+
+
+def test_a_date_that_does_not_exist_times_nothing(tmp_path: Path) -> None:
+    export = tmp_path / "details.txt"
+    export.write_text("Frame 1: 8 bytes at offset 0, request (RTU)\n"
+                      "    Arrival time: 2026-02-30 00:00:00.000000 UTC (0.000000 s since the first item)\n"
+                      "0000  0c 03 20 d1 00 01 de ee                           .. .....\n")
+    assert run_cli(["-n", "-T", "fields", "-e", "frame", "-e", "time", str(export)]) == (0, "1\t\n", "")
+
+
+def test_a_noise_item_says_its_arrival_time_too() -> None:
+    """-V gave a frame its `Arrival time` line and a noise item none, though its time is in the summary and
+    --json (noisy_bus.pcap's item 1 at 0.000000): each item is a packet, timed as tshark -V times each."""
+    from conftest import ROOT
+
+    out = run_cli(["-V", "-c", "1", str(ROOT / "captures" / "noisy_bus.pcap")])[1]
+    assert out.splitlines()[:4] == [
+        "Item 1: noise, 4 bytes at offset 0",
+        "    Arrival time: 2026-01-01 00:00:00.006072 UTC (0.000000 s since the first item)",
+        "    4 bytes of noise at offset 0: 00 ff ff f0",
+        "    Reason: no valid frame"]
