@@ -27,7 +27,8 @@ from dissector.sources.pcapng import Interface as RecordedInterface
 from dissector.sources.reader import NOTATIONS, SourceError, open_source
 from dissector.sources.trail import Piece, RecordTrail, item_comments, observed
 
-TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
+TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic", "tshark-x"])  # formats whose records may carry times
+TIMED_TEXTS = ("hexdump", "traffic", "tshark-x")  # of those, texts: their times' digits say their precision
 
 Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], Callable[[], Any], bool, Fix,
               tuple[str | None, str | None], "PacketInterface | None", "Callable[[], Any] | None", int | None]
@@ -90,7 +91,7 @@ def time_units(source: Any, buses: list[PacketInterface], bus: PacketInterface |
     None for others (microseconds, rounded)."""
     if buses:
         return (bus or buses[0]).interface.units
-    if source.format in ("hexdump", "traffic"):
+    if source.format in TIMED_TEXTS:
         from dissector.sources.common import rereadable
 
         return NANOS if path != "-" and rereadable(path) and _text_nanoseconds(path, fmt) else None
@@ -177,7 +178,7 @@ def _text_nanoseconds(path: str, fmt: str | None) -> bool:
     """Do the first lines of a hex dump or traffic log have times with nanoseconds?"""
     try:
         with open_source(path, fmt) as source:
-            if source.format not in ("hexdump", "traffic"):
+            if source.format not in TIMED_TEXTS:
                 return False
             return any(chunk.time is not None and getattr(chunk.time, "ns", 0) % 1000
                        for chunk in islice(source, TEXT_LINES))

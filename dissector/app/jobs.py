@@ -29,7 +29,7 @@ from dissector.render.bustiming import BusTiming
 from dissector.sources.reader import SourceError, open_source
 from dissector.sources.trail import RecordTrail, item_comments
 
-TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])
+TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic", "tshark-x"])
 
 
 @dataclass(frozen=True, slots=True)

@@ -454,6 +454,8 @@ def _build(item: Item, base: float | None, joined: bool, digits: int = MICRO_DIG
     if isinstance(item, Noise):
         length = count_text(item.length, "byte")
         detail.styled(f"Item {item.number}: noise, {length} at offset {item.offset}", "vw3.noise")
+        if item.time is not None:  # (a packet of its own, timed as tshark -V times every packet)
+            add(arrival_line(item.time, base, digits))
         add(f"    {noise_info(item)}")
         add(f"    Reason: {item.reason}")
         return detail

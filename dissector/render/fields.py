@@ -144,6 +144,9 @@ def check_field(key: str) -> None:
     head = key.split(".", 1)[0]
     if key in TIME_FIELDS:
         return
+    ours = _foreign(key)
+    if ours is not None:  # a name from a tshark command line (frame.number, mbrtu.unit_id): said as -Y says it
+        raise UsageError(f"-e {key}: not a field (vw3-decode names it {ours})")
     if head in FRAME_FIELDS or head in REGISTER_FIELDS or head in EXTRA_FRAME_KEYS:
         if "." in key and head != "fields":
             raise UsageError(f"-e {key}: only fields.KEY names a key inside a value")
@@ -160,6 +163,16 @@ def check_field(key: str) -> None:
     close = difflib.get_close_matches(key, names, n=1)
     hint = f" (did you mean {close[0]}?)" if close else " (see the NDJSON keys in the README)"
     raise UsageError(f"-e {key}: not a field{hint}")
+
+
+def _foreign(key: str) -> str | None:
+    """vw3-decode's key for a Wireshark field name (filter_fields.foreign_name; frame.time_delta_displayed,
+    which -Y refuses, is a -T fields key), None for any other."""
+    from dissector.render.filter_fields import foreign_name
+
+    if key.startswith("frame.") and key[6:] in TIME_FIELDS:
+        return key[6:]
+    return foreign_name(key) if "." in key and not key.startswith("fields.") else None
 
 
 def _text(value: Any) -> str:

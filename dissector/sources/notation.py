@@ -3,10 +3,12 @@
     0C 03 20 D0 00 03 0E EF           hex pairs, in groups of whole bytes (0C0320D0 000 3...)
     0x0C 0x03, 0x20 0xD0              C, C# and pymodbus: 0x5 is 05, 0x0C03 is 0C 03
     0C:03:20:D0:00:03:0E:EF           colon-separated (ESPHome and many device logs)
+    0C-03-20-D0-00-03-0E-EF           dash-separated (C#'s BitConverter.ToString, .NET Modbus logs)
     [12, 3, 32, 208, 0, 3, 14, 239]   decimal lists (NModbus, Python and C# byte arrays)
+    [0C][03][20][D0] or <0C><03>...   libmodbus's debug output (mbpoll -v): hex, a byte a bracket
 
 Commas, and one pair of [ ] or { } around the list, are separators. A list is decimal when it cannot
-be hex: some number has 1 or 3 digits (a hex byte has 2). A letter, a 0x, a colon or a group of
+be hex: some number has 1 or 3 digits (a hex byte has 2). A letter, a 0x, a colon, a dash or a group of
 several bytes proves hex (and then a 1- or 3-digit number in the same list is a hex typo). Two-digit numbers alone prove nothing: they follow what the input has
 shown so far. Before any proof a list without commas is hex (the hex dump's own notation) and one
 with commas is refused, since `10, 20, 30` is as likely decimal. An input that shows both is
@@ -23,9 +25,10 @@ HEX = "hex"
 DECIMAL = "decimal"
 
 _PREFIXED = re.compile(r"0[xX]([0-9A-Fa-f]{1,2}|(?:[0-9A-Fa-f]{2})+)")
-_COLON = re.compile(r"[0-9A-Fa-f]{2}(?::[0-9A-Fa-f]{2})+")
+_COLON = re.compile(r"[0-9A-Fa-f]{2}(?::[0-9A-Fa-f]{2})+|[0-9A-Fa-f]{2}(?:-[0-9A-Fa-f]{2})+")  # (one separator a token)
 _GROUP = re.compile(r"(?:[0-9A-Fa-f]{2})+")
 _SEPARATORS = re.compile(r"[\s,]+")
+_BRACKETED = re.compile(r"(?:\[[0-9A-Fa-f]{2}\])+|(?:<[0-9A-Fa-f]{2}>)+")
 
 
 class NotationError(MalformedInput):
@@ -64,7 +67,7 @@ def _hex_bytes(token: str) -> bytes:
     prefixed = _PREFIXED.fullmatch(token)
     if prefixed is not None:
         return bytes.fromhex(prefixed.group(1).zfill(2))
-    return bytes.fromhex(token.replace(":", ""))
+    return bytes.fromhex(token.replace(":", "").replace("-", ""))
 
 
 def _decimal_byte(token: str) -> int:
@@ -77,6 +80,8 @@ def _decimal_byte(token: str) -> int:
 def split_list(text: str) -> list[str]:
     """The numbers of a byte list: commas and spaces separate, one [ ] or { } around it is dropped."""
     body = text.strip()
+    if body and all(_BRACKETED.fullmatch(word) for word in body.split()):  # (before a list's [ ] is dropped:
+        return re.findall(r"[0-9A-Fa-f]{2}", body)                            # [01][03] would be 01][03)
     if body[:1] in ("[", "{") and body[-1:] in ("]", "}"):
         body = body[1:-1]
     return [token for token in _SEPARATORS.split(body) if token]

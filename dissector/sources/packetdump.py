@@ -7,7 +7,10 @@ them (what text2pcap reads back):
     0030  49 4e 45 20 34 6f 50                              INE 4oP
 
 Each packet starts at offset 0 and is one record (its bytes, then a frame boundary, as a pcap record),
-untimed. A line's offset says where its bytes belong in the packet: one that does not go on where the
+untimed, but where the packet's details before its bytes give its time (`tshark -V -x`, Wireshark's Export
+Packet Dissections as plain text: `Epoch Time: 1767225600.010157000 seconds`, 4.2's `Epoch Arrival Time`;
+`vw3-decode -V -x`: `Arrival time: 2026-01-01 00:00:00.010157 UTC`), to the nanosecond, as the capture it
+was dissected from had it. A line's offset says where its bytes belong in the packet: one that does not go on where the
 line before ended is an error (bytes missing or doubled). The character column is ignored. Lines that
 do not start with an offset (tshark -P's and vw3-decode -x's summary lines, blank lines) are passed
 over, as text2pcap passes them over.
@@ -18,18 +21,25 @@ is at offset 0. `0000  0C 03 20 D0` without it stays a hex dump line (bytes 00 0
 """
 from __future__ import annotations
 
+import calendar
 import re
 from collections.abc import Iterator
+from datetime import datetime
 
-from dissector.model import Chunk
+from dissector.model import Chunk, Stamp
 from dissector.sources.common import Input, SourceError, WarningLog
-from dissector.sources.hexdump import cut_short, ended_lines
+from dissector.sources.hexdump import StampedLines, cut_short, ended_lines
 
 # Offset, two or three spaces (tshark -x: two; Wireshark's copy: three), up to 16 bytes one space apart,
 # then the character column at least two spaces on (the hex part is padded to 16 bytes' width).
 _LINE = re.compile(r"([0-9a-fA-F]{4,8}) {2,3}((?:[0-9a-fA-F]{2} ){0,15}[0-9a-fA-F]{2})(?:( {2,})(.*))? *")
 _OFFSET = re.compile(r"[0-9a-fA-F]{4,8} {2}")  # a line that claims to be a dump line
 _CUT = re.compile(r"([0-9a-fA-F]{4,8}) {2,3}((?:[0-9a-fA-F]{2} )*)([0-9a-fA-F]?)")
+# The frame tree's time of the packet (tshark 4.0 -V: `Epoch Time: S.NNNNNNNNN seconds`; 4.2 on: `Epoch Arrival
+# Time`): the seconds since the epoch, in decimals as the dissector wrote them.
+_EPOCH = re.compile(r"\s*Epoch (?:Arrival )?Time: (-?\d+)(?:\.(\d{1,9}))? seconds\s*")
+# vw3-decode -V's (render/detail_plain.py): the date and time in UTC, then the time column's reading.
+_ARRIVAL = re.compile(r"\s*Arrival time: (\d{4})-(\d\d)-(\d\d) (\d\d):(\d\d):(\d\d)(?:\.(\d{1,9}))? UTC(?: \(.*\))?\s*")
 
 
 def _characters(data: bytes) -> str:
@@ -60,13 +70,40 @@ def looks_like_packet_dump(text: str, complete: bool) -> bool:
                for _offset, data, column in dumped)
 
 
-def read_packet_dump(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
-    """One chunk per packet, ending with a boundary; a long packet in pieces of about chunk_size bytes."""
+def _epoch(line: str) -> Stamp | None:
+    found = _EPOCH.fullmatch(line)
+    if found is None:
+        arrival = _ARRIVAL.fullmatch(line)
+        if arrival is None:
+            return None
+        try:
+            parts = [int(part) for part in arrival.groups()[:6]]
+            datetime(*parts)  # (a day or an hour that does not exist: no time)
+            seconds = calendar.timegm((*parts, 0, 0, 0))
+        except ValueError:
+            return None
+        return Stamp(seconds * 1_000_000_000 + int((arrival.group(7) or "").ljust(9, "0")))
+    seconds, fraction = int(found.group(1)), found.group(2) or ""
+    return Stamp(seconds * 1_000_000_000 + (-1 if seconds < 0 else 1) * int(fraction.ljust(9, "0")))
+
+
+def read_packet_dump(inp: Input, log: WarningLog, chunk_size: int) -> StampedLines:
+    """One chunk per packet, ending with a boundary; a long packet in pieces of about chunk_size bytes; its
+    first piece timed where the packet's details said its time."""
+    return StampedLines(_packets(inp, log, chunk_size))
+
+
+def _packets(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
     pending = bytearray()  # the packet's bytes not yet given
     position = 0  # the packet's bytes so far
+    told: Stamp | None = None  # the time the details before the coming packet gave
+    time: Stamp | None = None  # the packet's at hand, until its first piece is given
     for number, line, ended in ended_lines(inp, chunk_size):
         parsed = _parse(line)
         last = False
+        if parsed is None and (stamp := _epoch(line)) is not None:
+            told = stamp
+            continue
         if parsed is None:
             cut = None if ended else _CUT.fullmatch(line.rstrip())
             if cut is not None:  # the input's last line, cut short inside its bytes: its whole bytes
@@ -78,18 +115,21 @@ def read_packet_dump(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[C
                 continue  # a summary line, a blank one
         offset, data, _column = parsed
         if offset == 0 and position:
-            yield Chunk(bytes(pending), None, True)
+            yield Chunk(bytes(pending), time, True)
             pending.clear()
             position = 0
+        if offset == 0:
+            time, told = told, None
         if offset != position:
             raise SourceError(f"{inp.name} line {number}: offset {offset:#06x} where {position:#06x} was expected "
                               "(bytes missing or repeated)")
         if len(pending) >= chunk_size:
-            yield Chunk(bytes(pending))
+            yield Chunk(bytes(pending), time)
             pending.clear()
+            time = None
         pending += data
         position += len(data)
         if last:
             break
     if pending:
-        yield Chunk(bytes(pending), None, True)
+        yield Chunk(bytes(pending), time, True)

@@ -28,6 +28,7 @@ from dissector.sources.compressed import HEADER_BYTES, Decompressed, compression
 from dissector.sources.dumps import dump_tool, read_dump, refuse_words, word_dump
 from dissector.sources.encoding import Encoding, decoded, marked, text_input
 from dissector.sources.hexdump import CONTROL, characters, looks_like_hexdump, read_hexdump
+from dissector.sources.libmodbus import looks_like_libmodbus, read_libmodbus
 from dissector.sources.packetdump import looks_like_packet_dump, read_packet_dump
 from dissector.sources.notation import DECIMAL, HEX, Notation
 from dissector.sources.pcap import is_pcap, read_pcap
@@ -40,11 +41,11 @@ __all__ = ["FORMATS", "Source", "SourceError", "detect_format", "open_source"]
 # --format values -> Source.format
 FORMATS = {"raw": "raw", "pcap": "pcap", "pcapng": "pcapng", "hex": "hexdump", "hexdump": "hexdump",
            "decimal": "hexdump", "ascii": "ascii", "xxd": "xxd", "hexdump-C": "hexdump-C", "od": "od", "traffic": "traffic",
-           "tshark-x": "tshark-x"}
+           "tshark-x": "tshark-x", "libmodbus": "libmodbus"}
 # A format given for a one-frame-a-line dump also says how its numbers are written.
 NOTATIONS = {"hex": HEX, "hexdump": HEX, "decimal": DECIMAL}
 MODES = ("rtu", "ascii")
-TEXT_FORMATS = frozenset({"hexdump", "xxd", "hexdump-C", "od", "traffic", "ascii", "tshark-x"})  # read as text when a BOM says so
+TEXT_FORMATS = frozenset({"hexdump", "xxd", "hexdump-C", "od", "traffic", "ascii", "tshark-x", "libmodbus"})  # read as text when a BOM says so
 SNIFF_BYTES = 512  # enough to see a magic number or a few text lines
 SNIFF_LINES = 4  # a text sample with this many lines is enough to judge
 SNIFF_COMMENTS = 65536  # but a hex dump's header of comments is read to its first data line, this far
@@ -73,6 +74,7 @@ READERS: dict[str, Reader] = {
     "words": refuse_words,  # hexdump's default, od -x: refused, naming the dumps that say their bytes
     "traffic": read_traffic,  # Modbus Poll / Modbus Slave traffic logs
     "tshark-x": read_packet_dump,  # tshark -x, vw3-decode -x
+    "libmodbus": read_libmodbus,  # libmodbus debug output, mbpoll -v
 }
 
 
@@ -128,6 +130,8 @@ def detect_format(sample: bytes, complete: bool) -> tuple[str, str | None]:
         return "tshark-x", None
     if looks_like_hexdump(text, complete):
         return "hexdump", None
+    if looks_like_libmodbus(text, complete):  # (its program's lines between the frames are no hex dump's)
+        return "libmodbus", None
     # Most lines of a format and a few not (a typo, a cut line, a note without `#`): that format, whose
     # reader names the line it refuses, rather than the text's characters decoded as bytes.
     if looks_like_traffic(text, complete, most=True):

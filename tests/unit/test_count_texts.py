@@ -123,7 +123,9 @@ def test_raw_stream_noise_of_one_byte(engine: str) -> None:
 
 def test_detail_of_noise_and_of_an_unnamed_object(capture: Path, engine: str) -> None:
     out = cli("-V", "-Y", "frame == 3 or frame == 7", str(capture))
-    assert "Item 3: noise, 1 byte at offset 23\n    1 byte of noise at offset 23: aa\n    Reason: too short for a frame\n" in out
+    assert ("Item 3: noise, 1 byte at offset 23\n"
+            "    Arrival time: 2026-01-01 00:00:00.050000 UTC (0.050000 s since the first item)\n"
+            "    1 byte of noise at offset 23: aa\n    Reason: too short for a frame\n") in out
     assert "        Object 128: 'ABC'\n        Object 5 ModelName: 'XY'\n" in out
     assert "Object 128 Object 128" not in out
 

@@ -74,8 +74,10 @@ DETAILS_AND_BYTES = "".join([
     '0000  0c 03 06 00 01 00 02 00 03 a5 e4                  ...........\n'
     '\n'
 ])
-LINES = ["     1            -  12 request   Read Holding Registers 8400..8402 (3)  CRC ok",
-         "     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=1 8401=2 8402=3 [#1]  CRC ok"]
+# (timed by each packet's Epoch Time line, as the pcap it was dissected from: test_packet_dump_times)
+LINES = ["     1     0.000000  12 request   Read Holding Registers 8400..8402 (3)  CRC ok",
+         "     2     0.020000  12 response  Read Holding Registers 8400..8402 (3): 8400=1 8401=2 8402=3 [#1, 20.0 ms]"
+         "  CRC ok"]
 
 
 def test_details_then_bytes_is_a_packet_dump(tmp_path: Path) -> None:
