@@ -4381,11 +4381,70 @@ local function crc_string_ok(bytes, to, read, from, l, h)
 end
 local crc_run = crc_string_ok -- (a byte table's CRC: crc_run(b, to, unpack, from, l, h))
 
+-- Windows that repeat a short pattern (a line stuck on one value, a device babbling a few bytes: hostile
+-- floods make every position a frame start weighed in full, its CRCs over 28 to 256 bytes each, some of
+-- them twice: at a position, then as what follows the one before) have the same CRCs wherever they start
+-- in the pattern's phase: their answers are kept by the pattern (its period, bytes) and the lengths asked.
+-- The run of one period around the last window asked is kept per buffer (buffers are only appended to: a
+-- run found stays one, and grows as bytes come). Windows shorter than PERIODIC_FROM cost less than the look.
+local PERIOD_MAX, PERIODIC_FROM, PERIODIC_KEEP = 4, 8, 4096
+local run_b, run_p, run_start, run_stop = nil, 0, 0, 0
+local run_keys = {} -- (the run's pattern as a window starting at i has it, by i % run_p: pattern_of's keys)
+local periodic, periodic_kept = {}, 0
+
+-- The pattern b[i .. i + length - 1] repeats, as a number (its bytes, then its period: PERIOD_MAX bytes and
+-- the period keep it exact in a double); nil: none of PERIOD_MAX bytes or less.
+local function pattern_of(b, i, length)
+  local stop, p, known = i + length, nil, nil
+  if b == run_b then
+    -- (the run kept, grown to the window where it is near: windows ahead and behind are asked in turn)
+    local q, start, k = run_p, run_start, run_stop
+    if i < start and start - i <= length then
+      while start > i and b[start - 1] == b[start - 1 + q] do start = start - 1 end
+      run_start = start
+    end
+    if i >= start and i - k <= length then
+      while k < stop and b[k] == b[k - q] do k = k + 1 end -- (nil past the buffer's end: the run ends there)
+      run_stop = k
+      if k >= stop then p = q elseif k >= i + q then known = q end -- (known: it ends inside the window)
+    end
+  end
+  if p == nil then
+    for q = 1, PERIOD_MAX do
+      if q ~= known then
+        local k = i + q
+        while k < stop and b[k] == b[k - q] do k = k + 1 end
+        if k >= stop then
+          run_b, run_p, run_start, run_stop, p = b, q, i, k, q
+          for start = i, i + q - 1 do
+            local key = 0
+            for at = start + q - 1, start, -1 do key = key * 256 + b[at] end
+            run_keys[start % q] = key * 8 + q
+          end
+          break
+        end
+      end
+    end
+    if p == nil then return nil end
+  end
+  return run_keys[i % p]
+end
+
+-- The answer kept for `key` (a pattern and what was asked of it), or made by make(...) and kept.
+local function kept_for(key, make, ...)
+  local known = periodic[key]
+  if known == nil then
+    known = make(...)
+    if periodic_kept >= PERIODIC_KEEP then periodic, periodic_kept = {}, 0 end
+    periodic[key], periodic_kept = known, periodic_kept + 1
+  end
+  return known
+end
+
 -- The lengths from `minimum` to `last` at which the bytes from i end in their CRC (protocol/crc.py
 -- crc_lengths), written into `lengths`, their count returned; without `lengths`, the first such length (0:
 -- none). One running CRC over the growing frame: each length costs one byte, not a new CRC.
-local function crc_scan(b, i, minimum, last, lengths)
-  if minimum > last then return 0 end
+local function crc_scan_run(b, i, minimum, last, lengths)
   local count = 0
   local l, h = crc_run(b, i + minimum - 2, unpack, i, 0xFF00, 0xFF00)
   local lo, hi = floor(l / 256), floor(h / 256)
@@ -4403,40 +4462,36 @@ local function crc_scan(b, i, minimum, last, lengths)
   return count
 end
 
+local function all_lengths(b, i, minimum, last)
+  local lengths = {}
+  crc_scan_run(b, i, minimum, last, lengths)
+  return lengths
+end
+
+local function crc_scan(b, i, minimum, last, lengths)
+  if minimum > last then return 0 end
+  local key = last >= PERIODIC_FROM and pattern_of(b, i, last) or nil
+  if key == nil then return crc_scan_run(b, i, minimum, last, lengths) end
+  -- (a negative key: a scan's, apart from crc_ok_at's; minimum and last below 512)
+  local found = kept_for(-((key * 512 + minimum) * 512 + last), all_lengths, b, i, minimum, last)
+  if lengths == nil then return found[1] or 0 end
+  local count = #found
+  for index = 1, count do lengths[index] = found[index] end
+  return count
+end
+
 -- The lengths from `minimum` to `last` at which the bytes from i end in a valid CRC, in order (rtu.py
 -- crc_lengths). Kept for the position being matched: its interpretations (a code without a length rule
--- is scanned as a request and as a response) and scan_match's two passes share one scan, not four. A
--- flood of one byte that starts a scanned frame everywhere (0x2B, 0x69, 0x6E, 0x41: any slave, an
--- unknown code) would otherwise scan at every byte. A window of one byte value (a flood) has the same
--- lengths wherever it starts: they are kept by the byte, minimum and last (at most FLOOD_KEEP of them),
--- and the run of that byte around the position is kept per buffer (buffers are only appended to: a run
--- found stays one).
+-- is scanned as a request and as a response) and scan_match's two passes share one scan, not four. (A
+-- flood's windows are kept by their pattern: crc_scan.)
 local scanned = { lengths = {} }
-local run = { start = 0, stop = 0 }
-local flood_lengths, flood_kept, FLOOD_KEEP = {}, 0, 4096
 local function crc_lengths(b, i, n, minimum, last)
   local memo = scanned
   if memo.b == b and memo.i == i and memo.n == n and memo.minimum == minimum and memo.last == last then
     return memo.lengths
   end
-  local c = b[i]
-  if run.b ~= b or i < run.start or i >= run.stop then run.b, run.start, run.stop = b, i, i + 1 end
-  local stop = run.stop
-  while stop < n and b[stop] == c do stop = stop + 1 end
-  run.stop = stop
-  local key, lengths = nil, nil
-  if stop - i >= last then -- b[i] .. b[i + last - 1], every byte a scan reads, are c
-    key = (c * 512 + minimum) * 512 + last
-    lengths = flood_lengths[key]
-  end
-  if lengths == nil then
-    lengths = {}
-    crc_scan(b, i, minimum, last, lengths)
-    if key ~= nil then
-      if flood_kept >= FLOOD_KEEP then flood_lengths, flood_kept = {}, 0 end
-      flood_lengths[key], flood_kept = lengths, flood_kept + 1
-    end
-  end
+  local lengths = {}
+  crc_scan(b, i, minimum, last, lengths)
   memo.b, memo.i, memo.n, memo.minimum, memo.last, memo.lengths = b, i, n, minimum, last, lengths
   return lengths
 end
@@ -4451,7 +4506,7 @@ end
 -- frame that follows...) share their first bytes, and the CRC costs most of the framing. (Byte tables
 -- are never changed below their end, so a CRC once computed stays right.)
 local crc_b, crc_i, crc_to, crc_l, crc_h = nil, -1, -1, 0xFF00, 0xFF00
-local function crc_ok_at(b, i, length)
+local function crc_ok_run(b, i, length)
   local stop = i + length - 2
   local l, h
   if b == crc_b and i == crc_i and stop >= crc_to then
@@ -4461,6 +4516,24 @@ local function crc_ok_at(b, i, length)
   end
   crc_b, crc_i, crc_to, crc_l, crc_h = b, i, stop, l, h
   return l == b[stop] * 256 and h == b[stop + 1] * 256
+end
+
+local function crc_ok_at(b, i, length)
+  if length < PERIODIC_FROM then return crc_ok_run(b, i, length) end
+  local key
+  -- (a window inside the run kept: its pattern by its phase, pattern_of's answer without the call)
+  if b == run_b and i >= run_start and i + length <= run_stop then key = run_keys[i % run_p] else
+    key = pattern_of(b, i, length)
+  end
+  if key == nil then return crc_ok_run(b, i, length) end
+  key = key * 512 + length
+  local known = periodic[key]
+  if known == nil then
+    known = crc_ok_run(b, i, length)
+    if periodic_kept >= PERIODIC_KEEP then periodic, periodic_kept = {}, 0 end
+    periodic[key], periodic_kept = known, periodic_kept + 1
+  end
+  return known
 end
 M.concat, M.crc16, M.crc_lengths, M.crc_ok_at, M.crc_scan = concat, crc16, crc_lengths, crc_ok_at, crc_scan
 M.crc_step, M.crc_string_ok, M.floor, M.format, M.made_once = crc_step, crc_string_ok, floor, format, made_once
@@ -4492,10 +4565,15 @@ end
 
 -- A length by a count field (table.Counted): `extra` + the byte (width 1) or word (2) at `position`.
 local function counted(position, extra, width)
-  local last = position + width - 1
+  if width == 1 then -- (a rule per width: a flood weighs these at every byte, three times)
+    return function(b, i, n)
+      if i + position >= n then return NEED end
+      return extra + b[i + position]
+    end
+  end
   return function(b, i, n)
-    if i + last >= n then return NEED end
-    return extra + (width == 1 and b[i + position] or b[i + position] * 256 + b[i + position + 1])
+    if i + position + 1 >= n then return NEED end
+    return extra + b[i + position] * 256 + b[i + position + 1]
   end
 end
 
@@ -4544,7 +4622,8 @@ local function data_bytes(items, unit) return unit > 0 and items * unit or floor
 local function by_quantity(position, extra, unit, count_at, count_extra)
   return function(b, i, n)
     if i + position + 1 >= n or i + count_at >= n then return NEED end
-    local length = extra + data_bytes(b[i + position] * 256 + b[i + position + 1], unit)
+    local items = b[i + position] * 256 + b[i + position + 1]
+    local length = extra + (unit > 0 and items * unit or floor((items + 7) / 8)) -- (data_bytes, inline)
     if length == count_extra + b[i + count_at] then return NONE end
     return length
   end

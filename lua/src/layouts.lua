@@ -20,10 +20,15 @@ end
 
 -- A length by a count field (table.Counted): `extra` + the byte (width 1) or word (2) at `position`.
 local function counted(position, extra, width)
-  local last = position + width - 1
+  if width == 1 then -- (a rule per width: a flood weighs these at every byte, three times)
+    return function(b, i, n)
+      if i + position >= n then return NEED end
+      return extra + b[i + position]
+    end
+  end
   return function(b, i, n)
-    if i + last >= n then return NEED end
-    return extra + (width == 1 and b[i + position] or b[i + position] * 256 + b[i + position + 1])
+    if i + position + 1 >= n then return NEED end
+    return extra + b[i + position] * 256 + b[i + position + 1]
   end
 end
 
@@ -72,7 +77,8 @@ local function data_bytes(items, unit) return unit > 0 and items * unit or floor
 local function by_quantity(position, extra, unit, count_at, count_extra)
   return function(b, i, n)
     if i + position + 1 >= n or i + count_at >= n then return NEED end
-    local length = extra + data_bytes(b[i + position] * 256 + b[i + position + 1], unit)
+    local items = b[i + position] * 256 + b[i + position + 1]
+    local length = extra + (unit > 0 and items * unit or floor((items + 7) / 8)) -- (data_bytes, inline)
     if length == count_extra + b[i + count_at] then return NONE end
     return length
   end
