@@ -72,7 +72,7 @@ end
 
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
 -- will come). With scan false, only layouts with a length rule count (rtu.py _valid_frame_at).
-local function valid_frame_at(s, b, i, n, final, scan)
+local function frame_at(s, b, i, n, final, scan)
   if n - i < MIN_ADU then
     if final then return i == n end
     return nil
@@ -98,6 +98,23 @@ local function valid_frame_at(s, b, i, n, final, scan)
       if not final and reach == n and n - i < MAX_ADU then found = nil end
     end
   end
+  return found
+end
+
+-- frame_at's answers by the stream's length and position under one state (the buffer, the answer awaited, its
+-- echo): noise asks a position again after each reading of the one before (followed), a flood some three times.
+local ANSWER, BY_ANSWER, valid_known, valid_state = { [true] = 1, [false] = 2 }, { true, false, nil }, {}, {}
+local function valid_frame_at(s, b, i, n, final, scan)
+  local state = valid_state
+  if state[1] ~= s or state[2] ~= b or state[3] ~= s.expect or state[4] ~= s.echo or state[5] ~= s.base then
+    valid_known, state[1], state[2], state[3], state[4], state[5] = {}, s, b, s.expect, s.echo, s.base
+  end
+  local known = valid_known[n] or {}
+  valid_known[n] = known
+  local key = i * 4 + (final and 2 or 0) + (scan == false and 1 or 0)
+  if known[key] ~= nil then return BY_ANSWER[known[key]] end
+  local found = frame_at(s, b, i, n, final, scan)
+  known[key] = ANSWER[found] or 3
   return found
 end
 
@@ -347,10 +364,12 @@ local function match(s, b, i, n, final)
   -- No layout checks out: a damaged frame is shown once if the line confirms its end (followed; the end of
   -- the input only for the answer awaited) and it holds none inside (a cut frame must not swallow the
   -- intact frame that follows it).
+  local reach = nil -- (framed_reach at i, asked once for every reading: crosses_framed_record)
   for index = 1, #(damaged or NO_INTERPRETATION) do
     local kind, length = damaged[index][1], damaged[index][2]
     local stop = i + length
-    local following = not crosses_framed_record(s, b, i, length, n) and followed(s, b, stop, n, final, awaits)
+    reach = reach or framed_reach(s, b, i, n)
+    local following = reach >= math.min(n, stop) and followed(s, b, stop, n, final, awaits)
     if following == nil then return NEED end
     if following then
       local inside = framed_inside(s, b, i, length, n, final)

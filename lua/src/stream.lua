@@ -23,6 +23,13 @@ local GLITCH = FRAMING.glitch_bytes
 -- times over. The index of the first entry of `list` above `value` (past the end: none); step 2: the entries at
 -- odd indices alone (s.times' offsets).
 local function first_above(list, value, step)
+  local count = #list
+  if count <= 16 then -- (a few entries, the usual case: looked at in turn, no call of floor)
+    for index = 1, count, step do
+      if list[index] > value then return index end
+    end
+    return floor((count + step - 1) / step) * step + 1
+  end
   local low, high = 1, floor((#list + step - 1) / step) + 1 -- (entry numbers; the answer is in low .. high)
   while low < high do
     local mid = floor((low + high) / 2)
