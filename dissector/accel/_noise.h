@@ -18,7 +18,8 @@ typedef struct {
     int glitchy;                           /* StreamFramer.glitchy */
     const Py_ssize_t *ends, *starts;       /* record ends (_boundaries) and starts (_record_starts), ascending, */
     Py_ssize_t end_count, start_count;     /* as buffer indexes */
-} NoiseLine;
+    signed char *ends_record;              /* by record end: nz_ends_record's answer, -1 not asked yet (the */
+} NoiseLine;                               /* framer's _ends_memo: the buffer and the state stay in one call) */
 
 enum { NZ_NEED = -1, NZ_NONE = 0 }; /* a length found, or these (rules.py NEED, NONE) */
 
@@ -87,8 +88,10 @@ static int nz_ends_record(const NoiseLine *L, Py_ssize_t j, Py_ssize_t n) {
  * own (within MAX_ADU), else n. */
 static Py_ssize_t nz_reach(const NoiseLine *L, Py_ssize_t i, Py_ssize_t n) {
     Py_ssize_t high = n - MIN_ADU + 1 < i + MAX_ADU ? n - MIN_ADU + 1 : i + MAX_ADU;
-    for (Py_ssize_t k = nz_lower(L->ends, L->end_count, i + 1); k < L->end_count && L->ends[k] < high; k++)
-        if (nz_ends_record(L, L->ends[k], n)) return L->ends[k];
+    for (Py_ssize_t k = nz_lower(L->ends, L->end_count, i + 1); k < L->end_count && L->ends[k] < high; k++) {
+        if (L->ends_record[k] < 0) L->ends_record[k] = (signed char)nz_ends_record(L, L->ends[k], n);
+        if (L->ends_record[k]) return L->ends[k];
+    }
     return n;
 }
 
@@ -339,18 +342,23 @@ static int nz_offsets(PyObject *list, long long base, Py_ssize_t **out, Py_ssize
 static PyObject *module_noise_span(PyObject *self, PyObject *args) {
     Py_buffer view, echo;
     Py_ssize_t limit, *ends = NULL, *starts = NULL, end_count = 0, start_count = 0;
+    signed char *memo = NULL;
     int slave, function, glitchy;
     long long base;
     PyObject *end_list, *start_list, *result = NULL;
     if (!PyArg_ParseTuple(args, "y*niiy*pLO!O!", &view, &limit, &slave, &function, &echo, &glitchy, &base,
                           &PyList_Type, &end_list, &PyList_Type, &start_list))
         return NULL;
-    if (nz_offsets(end_list, base, &ends, &end_count) == 0 && nz_offsets(start_list, base, &starts, &start_count) == 0) {
-        NoiseLine L = {view.buf, view.len, slave, function, echo.buf, echo.len, glitchy, ends, starts, end_count, start_count};
+    if (nz_offsets(end_list, base, &ends, &end_count) == 0 && nz_offsets(start_list, base, &starts, &start_count) == 0
+        && ((memo = PyMem_Malloc((size_t)end_count + 1)) != NULL || (PyErr_NoMemory(), 0))) {
+        memset(memo, -1, (size_t)end_count + 1);
+        NoiseLine L = {view.buf, view.len, slave, function, echo.buf, echo.len, glitchy, ends, starts, end_count,
+                       start_count, memo};
         int wait;
         Py_ssize_t end = noise_span(&L, 0, limit < view.len ? limit : view.len, &wait);
         result = Py_BuildValue("(nO)", end, wait ? Py_True : Py_False);
     }
+    PyMem_Free(memo);
     PyMem_Free(ends);
     PyMem_Free(starts);
     PyBuffer_Release(&view);

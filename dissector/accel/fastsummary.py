@@ -447,7 +447,8 @@ class PythonSide:
             self.noisy = skipped[0] > 0 or self.noisy
             self.stride = NOISE_STRIDE  # (past the noise, again a few bytes at a time in Python)
             if skipped[1]:
-                # (the decision there waits for bytes to come: the framer takes none before the engine asks again)
+                # (the framer's decision there waits for bytes to come too: it takes none before the engine asks
+                # again; a later one would differ live, where a silence or a request's timeout may come first)
                 framer.pause_at(framer.offset)
                 return False
             framer.pause_at(framer.offset + 1)  # (where the engine stopped: the framer's own decision)
