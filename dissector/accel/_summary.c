@@ -9,7 +9,8 @@
  * exceptions, it frames and pairs, and the texts come from the Python stages by the frames' bytes. What
  * it hands back, before touching any state, at the start of the transaction, and why:
  *   - noise, a damaged frame, a frame followed by a 00 byte, a length only a CRC scan finds (FC43
- *     other than 14): the framer's careful path decides those. FC8's Return Query Data, whose echo
+ *     other than 14): the framer's careful path decides those (inside a noise run it has open, the
+ *     engine frames the noise for it: _noise.h). FC8's Return Query Data, whose echo
  *     has no length either, is found here by the framer's own scan (scan_length: the shortest CRC
  *     match an intact frame follows, checked with the framer's rules for every code it knows);
  *   - user-defined and vendor codes (SEL-749M 60h...): no layout, nothing to show but bytes;

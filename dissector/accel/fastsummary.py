@@ -8,8 +8,9 @@ protocol table marks compiled (both ways, and their exceptions; for FC17, FC20, 
 texts made here, `transaction_texts`), and hands the stream over to the Python stages, untouched, for
 everything else; the list of what it hands back, and why, heads _summary.c (noise, damage, lengths
 only a CRC scan finds but FC8's echoes, vendor codes, anything with a warning or a note, an exception that changes
-the annotator's memory). The Python stages stay the reference: the Construct grammars, the annotator
-and the renderer; the compiled path asks them for every text it shows (register readings, function
+the annotator's memory); inside a noise run the Python framer has open, the engine frames the noise
+for it (_noise.h, skip_noise: random bytes cost 4 to 5 s a MB framed in Python). The Python stages
+stay the reference: the Construct grammars, the annotator and the renderer; the compiled path asks them for every text it shows (register readings, function
 names, exception explanations) and keeps the annotator's parameter memory up to date.
 tests/differential/test_fastsummary.py holds its output equal to the Python stages' byte for byte.
 
@@ -393,8 +394,8 @@ class PythonSide:
     """The Python stages while they have the stream (SummaryPath, timedpath.TimedPath): they frame it
     one item at a time, so that the engine takes it back at their first idle point, where both agree
     on the item numbers and the framer's expectation. Noise and damaged frames the engine would hand
-    straight back: over them they frame by strides of bytes (NOISE_STRIDE, doubling up to NOISE_STRIDE_MAX),
-    and give the stream back only after `calm` intact frames in a row, which doubles (up to CALM_MAX)
+    straight back: inside a noise run the engine frames the noise for them (skip_noise), elsewhere they
+    frame by strides of bytes (NOISE_STRIDE, doubling up to NOISE_STRIDE_MAX), and give the stream back only after `calm` intact frames in a row, which doubles (up to CALM_MAX)
     each time the engine then numbered fewer than SHORT_STRETCH items before handing it over
     again (noise every few frames: each hand-over costs more than the frames it saves). Any idle point
     would do for the output, since both sides decide alike; these only save calls and hand-overs."""
@@ -496,8 +497,10 @@ def skip_noise(framer: Any) -> tuple[int, bool] | None:
     line bounds starts), decided by the engine (_noise.h noise_span) in the state it decides: an RTU
     noise run open, no silence in the buffer, the run kept under NOISE_ITEM_MAX (no item given out: the
     framer cuts it). How many bytes it added (0: none) and whether the decision where they end waits for
-    bytes to come (else the framer takes it itself); None where the engine does not decide. Random bytes framed in Python cost 4 to 5 s a megabyte (668,748
-    _match calls), more where pcap records bound them."""
+    bytes to come (else the framer takes it itself); None where the engine does not decide. Random bytes
+    framed in Python cost 4 to 5 s a megabyte (668,748 _match calls), more where pcap records bound them.
+    (It reads and extends the framer's own state, framing/stream.py's: the run, the buffer, the record
+    ends and starts, the answer awaited.)"""
     if not framer._noise or not _noise_eligible(framer):
         return None
     buf = framer._buf
@@ -506,7 +509,7 @@ def skip_noise(framer: Any) -> tuple[int, bool] | None:
         return None
     slave, function = framer._expect if framer._expect is not None else (-1, -1)
     end, wait = _summary.noise_span(buf, limit, slave, function, framer._echo, framer.glitchy, framer._base,
-                              list(framer._boundaries), list(framer._record_starts))
+                                    list(framer._boundaries), list(framer._record_starts))
     if end:
         framer._add_noise(0, end, NO_FRAME, [])  # (no item: the run stays under NOISE_ITEM_MAX bytes)
         framer._consume(end)
