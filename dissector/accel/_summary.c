@@ -9,7 +9,8 @@
  * exceptions, it frames and pairs, and the texts come from the Python stages by the frames' bytes. What
  * it hands back, before touching any state, at the start of the transaction, and why:
  *   - noise, a damaged frame, a frame followed by a 00 byte, a length only a CRC scan finds (FC43
- *     other than 14): the framer's careful path decides those. FC8's Return Query Data, whose echo
+ *     other than 14): the framer's careful path decides those (inside a noise run it has open, the
+ *     engine frames the noise for it: _noise.h). FC8's Return Query Data, whose echo
  *     has no length either, is found here by the framer's own scan (scan_length: the shortest CRC
  *     match an intact frame follows, checked with the framer's rules for every code it knows);
  *   - user-defined and vendor codes (SEL-749M 60h...): no layout, nothing to show but bytes;
@@ -707,6 +708,8 @@ static int next_frame(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, F
     if (i + f->length >= n) return FRAME_NEED;
     return b[i + f->length] == 0 || !crc_ok(b, i, f->length) ? FRAME_HANDOVER : FRAME_OK;
 }
+
+#include "_noise.h" /* noise framed in C where the framer's noise run is open (fastsummary.PythonSide) */
 
 /* ---- registers ---------------------------------------------------------------------------------- */
 typedef struct {
@@ -1502,6 +1505,10 @@ static PyMethodDef module_methods[] = {
     {"scan_pcap", module_scan_pcap, METH_VARARGS,
      "scan_pcap(buffer, position, big_endian, units, offset, previous, char_time, t35, chunk_size) -> a block\n"
      "of the pcap records in buffer from position (see _records.h)."},
+    {"noise_span", module_noise_span, METH_VARARGS,
+     "noise_span(buffer, limit, expect_slave, expect_function, echo, glitchy, base, ends, starts) -> (how many\n"
+     "bytes from the buffer's start the RTU framer, its noise run open, takes as noise; whether it waits for more\n"
+     "bytes there) (see _noise.h)."},
     {"crc_lengths", module_crc_lengths, METH_VARARGS,
      "crc_lengths(buffer, start, minimum, maximum) -> the lengths L in minimum..maximum at which\n"
      "buffer[start:start + L] ends in the CRC-16/MODBUS of the bytes before it."},

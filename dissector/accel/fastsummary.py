@@ -8,8 +8,9 @@ protocol table marks compiled (both ways, and their exceptions; for FC17, FC20, 
 texts made here, `transaction_texts`), and hands the stream over to the Python stages, untouched, for
 everything else; the list of what it hands back, and why, heads _summary.c (noise, damage, lengths
 only a CRC scan finds but FC8's echoes, vendor codes, anything with a warning or a note, an exception that changes
-the annotator's memory). The Python stages stay the reference: the Construct grammars, the annotator
-and the renderer; the compiled path asks them for every text it shows (register readings, function
+the annotator's memory); inside a noise run the Python framer has open, the engine frames the noise
+for it (_noise.h, skip_noise: random bytes cost 4 to 5 s a MB framed in Python). The Python stages
+stay the reference: the Construct grammars, the annotator and the renderer; the compiled path asks them for every text it shows (register readings, function
 names, exception explanations) and keeps the annotator's parameter memory up to date.
 tests/differential/test_fastsummary.py holds its output equal to the Python stages' byte for byte.
 
@@ -28,6 +29,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from dissector.decode.fields import decode_frame
+from dissector.framing.bounded import NO_FRAME
+from dissector.framing.stream import NOISE_ITEM_MAX
 from dissector.devices.access import read_only_addresses
 from dissector.devices.checks import unsupported_subfunctions
 from dissector.model import Chunk, Frame, Item, Kind
@@ -391,13 +394,13 @@ class PythonSide:
     """The Python stages while they have the stream (SummaryPath, timedpath.TimedPath): they frame it
     one item at a time, so that the engine takes it back at their first idle point, where both agree
     on the item numbers and the framer's expectation. Noise and damaged frames the engine would hand
-    straight back: over them they frame by strides of bytes (NOISE_STRIDE, doubling up to NOISE_STRIDE_MAX),
-    and give the stream back only after `calm` intact frames in a row, which doubles (up to CALM_MAX)
+    straight back: inside a noise run the engine frames the noise for them (skip_noise), elsewhere they
+    frame by strides of bytes (NOISE_STRIDE, doubling up to NOISE_STRIDE_MAX), and give the stream back only after `calm` intact frames in a row, which doubles (up to CALM_MAX)
     each time the engine then numbered fewer than SHORT_STRETCH items before handing it over
     again (noise every few frames: each hand-over costs more than the frames it saves). Any idle point
     would do for the output, since both sides decide alike; these only save calls and hand-overs."""
 
-    __slots__ = ("dissector", "framer", "write_items", "settled", "stride", "calm", "run", "damaged", "back")
+    __slots__ = ("dissector", "framer", "write_items", "settled", "stride", "calm", "run", "damaged", "back", "noisy")
 
     def __init__(self, dissector: Dissector, write_items: Callable[[list[Item]], None]) -> None:
         self.dissector = dissector
@@ -409,6 +412,7 @@ class PythonSide:
         self.run = 0  # intact frames in a row since the last noise or damaged frame
         self.damaged = False  # this stretch of the Python stages had noise or a damaged frame
         self.back = -1  # the engine's item count when it last took the stream back after damage
+        self.noisy = False  # the engine's last skip_noise took bytes: the framer takes one item at a time
 
     def take(self, count: int) -> None:
         """They take the stream from the engine, whose item count is `count`."""
@@ -418,6 +422,7 @@ class PythonSide:
         self.settled = True
         self.damaged = False
         self.stride = NOISE_STRIDE
+        self.noisy = False
 
     def give(self, count: int) -> None:
         """They give the stream back, the item count being `count`."""
@@ -431,12 +436,26 @@ class PythonSide:
 
     def step(self) -> bool:
         """One frame (or one noise run's next bytes), or up to a stride of bytes while not ready(),
-        with the bytes the framer holds: did it advance?"""
+        with the bytes the framer holds: did it advance? In an open noise run the engine takes the
+        bytes it finds to be noise first (skip_noise); where it stops, the framer decides one position,
+        and in noise (`noisy`: the engine's last call took bytes) one item after it, so that the engine
+        goes on with the noise after a damaged frame."""
         framer = self.framer
         before = framer.offset
-        if self.settled and framer.idle:
+        if (self.settled or self.noisy) and framer.idle:
             framer.pause_at(before + 1)
+        elif (skipped := skip_noise(framer)) is not None and (skipped[0] or skipped[1]):
+            self.noisy = skipped[0] > 0 or self.noisy
+            self.stride = NOISE_STRIDE  # (past the noise, again a few bytes at a time in Python)
+            if skipped[1]:
+                # (the framer's decision there waits for bytes to come too: it takes none before the engine asks
+                # again; a later one would differ live, where a silence or a request's timeout may come first)
+                framer.pause_at(framer.offset)
+                return False
+            framer.pause_at(framer.offset + 1)  # (where the engine stopped: the framer's own decision)
         else:
+            # (a short run, glitch bytes before a frame: strides, as the frames after it are the Python stages' too)
+            self.noisy = False
             framer.pause_at(before + self.stride)
             if self.stride < NOISE_STRIDE_MAX:
                 self.stride *= 2
@@ -465,6 +484,36 @@ class PythonSide:
             if self.run >= self.calm:
                 self.settled = True
         self.write_items(items)
+
+
+def _noise_eligible(framer: Any) -> bool:
+    """Does the engine frame noise the framer would (skip_noise): an RTU framer, no silence in its buffer?"""
+    return _summary is not None and framer.mode == "rtu" and not framer._silences
+
+
+def skip_noise(framer: Any) -> tuple[int, bool] | None:
+    """Add to the framer's open noise run the bytes from its buffer's start that its _run would take as
+    noise (framing/rtu.py: where no known code follows a byte, or _match finds no frame and no run the
+    line bounds starts), decided by the engine (_noise.h noise_span) in the state it decides: an RTU
+    noise run open, no silence in the buffer, the run kept under NOISE_ITEM_MAX (no item given out: the
+    framer cuts it). How many bytes it added (0: none) and whether the decision where they end waits for
+    bytes to come (else the framer takes it itself); None where the engine does not decide. Random bytes
+    framed in Python cost 4 to 5 s a megabyte (668,748 _match calls), more where pcap records bound them.
+    (It reads and extends the framer's own state, framing/stream.py's: the run, the buffer, the record
+    ends and starts, the answer awaited.)"""
+    if not framer._noise or not _noise_eligible(framer):
+        return None
+    buf = framer._buf
+    limit = min(len(buf), NOISE_ITEM_MAX - 1 - len(framer._noise))  # (the caller pauses the framer anew)
+    if limit <= 0:
+        return None
+    slave, function = framer._expect if framer._expect is not None else (-1, -1)
+    end, wait = _summary.noise_span(buf, limit, slave, function, framer._echo, framer.glitchy, framer._base,
+                                    list(framer._boundaries), list(framer._record_starts))
+    if end:
+        framer._add_noise(0, end, NO_FRAME, [])  # (no item: the run stays under NOISE_ITEM_MAX bytes)
+        framer._consume(end)
+    return end, wait
 
 
 def summarize(chunks: Iterable[Chunk], path: SummaryPath, after_chunk: Callable[[], None]) -> None:

@@ -297,6 +297,11 @@ def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
         *(f"    {', '.join(str(int(byte in GLITCH_BYTES)) for byte in range(row, row + 32))},"
           for row in range(0, 256, 32)),
         "};",
+        "/* The function codes a broadcast (slave 0) may not carry (framing/rules.py NOT_BROADCAST), by code. */",
+        "static const uint8_t not_broadcast[256] = {",
+        *(f"    {', '.join(str(int(code in framing_rules.NOT_BROADCAST)) for code in range(row, row + 32))},"
+          for row in range(0, 256, 32)),
+        "};",
         "/* Of the --stats store (render/stats_store.py) and the timed path (_timeline.h's chunk",
         " * flags are accel/records.py's). */",
         f"#define MAX_PARAMETERS {stats_store.MAX_PARAMETERS}",
