@@ -7,6 +7,7 @@ time would be, fed one by one (live capture fed those from 4173324 to 09ae941, a
 its own: 5 times the work, bench/live_feed.py)."""
 from __future__ import annotations
 
+import re
 from abc import ABC, abstractmethod
 
 from dissector.framing.answers import answer_length
@@ -28,6 +29,25 @@ GLITCHY_AFTER = 3
 GLITCH_SCORE_MAX = 8
 # The reason of the item a record captured in part is (StreamFramer._cut_part); lua/src/stream.lua says the same.
 CAPTURED_IN_PART = "captured in part"
+_PART_FIELDS = re.compile(r"; slave (\d+)(?:, function (\d+))?\)")
+
+
+def part_fields(reason: str) -> tuple[int, int | None] | None:
+    """The slave and function (None: not captured) a record captured in part's reason names (_part_fields);
+    None: no slave is known, or the reason is another's (the pairing matches the answer awaited with them)."""
+    if not reason.startswith(CAPTURED_IN_PART):
+        return None
+    found = _PART_FIELDS.search(reason)
+    if found is None:
+        return None
+    return int(found[1]), None if found[2] is None else int(found[2])
+
+
+def part_answering(reason: str, number: int) -> str:
+    """The reason of a record captured in part that answers request #number (pairing.py): it says so in
+    its parentheses (`...; slave 2, function 3; the answer to #1): its CRC cannot be checked`)."""
+    head, sep, tail = reason.partition("): ")
+    return f"{head}; the answer to #{number}{sep}{tail}"
 
 
 class StreamFramer(ABC):

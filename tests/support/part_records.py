@@ -31,6 +31,8 @@ def two_cut(tmp_path: Path) -> Path:
 
 
 CUT_ANSWER = "captured in part (5 of its 9 bytes; slave 2, function 3): its CRC cannot be checked"
+# The answer's item once paired with its request #1 (decode/pairing.py _answer_in_part), and the request's note.
+PAIRED_ANSWER = "captured in part (5 of its 9 bytes; slave 2, function 3; the answer to #1): its CRC cannot be checked"
 CUT_WRITE = "captured in part (5 of its 8 bytes; slave 2, function 6): its CRC cannot be checked"
 
 
