@@ -43,6 +43,18 @@ def part_fields(reason: str) -> tuple[int, int | None] | None:
     return int(found[1]), None if found[2] is None else int(found[2])
 
 
+_PART_LENGTHS = re.compile(r"\((\d+) of its (\d+) bytes")
+
+
+def part_lengths(reason: str) -> tuple[int, int] | None:
+    """The (captured, original) lengths a record captured in part's reason names (_cut_part); None: another's
+    (-w writes the record with both, as it was read: render/capturefile.py)."""
+    if not reason.startswith(CAPTURED_IN_PART):
+        return None
+    found = _PART_LENGTHS.match(reason, len(CAPTURED_IN_PART) + 1)
+    return None if found is None else (int(found[1]), int(found[2]))
+
+
 def part_answering(reason: str, number: int) -> str:
     """The reason of a record captured in part that answers request #number (pairing.py): it says so in
     its parentheses (`...; slave 2, function 3; the answer to #1): its CRC cannot be checked`)."""
@@ -107,6 +119,8 @@ class StreamFramer(ABC):
         self._framed_end = -1  # absolute offset where the last frame ends (-1: none yet): a bound (bounded.py)
         self._cut_by_silence = False  # finish(silence=True) runs: what it cuts, a silence cuts
         self._ready: list[Item] = []  # items made where no call gives them out (take_over's cut), for the next
+        # Records captured in part cut (_cut_part) and their bytes: a capture of nothing else is said so (app/cli.py).
+        self.cut_records = self.cut_bytes = 0
 
     def feed(self, chunk: Chunk) -> list[Item]:
         if type(chunk) is PartChunk and chunk.data:
@@ -162,6 +176,8 @@ class StreamFramer(ABC):
         if chunk.time is not None:
             self._timed = True
         items.append(Noise(offset=start, raw=data, time=chunk.time, reason=reason))
+        self.cut_records += 1
+        self.cut_bytes += len(data)
         end = start + len(data)
         self.restart_at(end, None)
         self._framed_end = -1  # (no frame ends there: the next record starts at a boundary)

@@ -4,11 +4,12 @@ nothing but such records is said so, a record of which no byte was captured is a
 one item, and --stats counts them apart. Python stages and the compiled engine alike (byte-identical)."""
 from __future__ import annotations
 
+import struct
 from pathlib import Path
 
 import pytest
 
-from helpers import engine_output_as_python
+from helpers import engine_output_as_python, pcapng_packets
 from part_records import ANSWER, REQUEST, WRITE, raw_pcap, two_cut
 
 PAIRED = "captured in part (5 of its 9 bytes; slave 2, function 3; the answer to #1): its CRC cannot be checked"
@@ -51,3 +52,53 @@ def test_exception_captured_in_part_answers(tmp_path: Path, monkeypatch: pytest.
         "     2     0.010000   - noise     3 bytes of noise at offset 8: 02 86 02 [captured in part (3 of its 5 bytes;"
         " slave 2, function 134; the answer to #1): its CRC cannot be checked]",
     ]
+
+
+def pcap_lengths(path: Path) -> list[tuple[int, int]]:
+    """(captured, original) lengths of every record of a little-endian classic pcap."""
+    data, position, found = path.read_bytes(), 24, []
+    while position + 16 <= len(data):
+        captured, original = struct.unpack_from("<II", data, position + 8)
+        found.append((captured, original))
+        position += 16 + captured
+    return found
+
+
+@pytest.mark.parametrize("suffix", ["pcap", "pcapng"])
+def test_written_copy_keeps_records_captured_in_part(suffix: str, tmp_path: Path,
+                                                    monkeypatch: pytest.MonkeyPatch) -> None:
+    """-w writes a record captured in part with its captured and its original length, as editcap -s does, so
+    the copy decodes as the capture. Before, written whole (5 of 5 bytes), the copy read back as a CRC BAD
+    answer `8401=3 8402=518` and a noise byte 00; its pcapng copy also said vw3-decode's own noise comments were
+    the input's packet comments."""
+    capture, copy = two_cut(tmp_path), tmp_path / f"copy.{suffix}"
+    original, _framed = engine_output_as_python([str(capture)], monkeypatch)
+    written, _framed = engine_output_as_python([str(capture), "-w", str(copy)], monkeypatch)
+    assert written == "".join(line + "\n" for line in original.splitlines() if line.startswith("vw3-decode: warning"))
+    again, _framed = engine_output_as_python([str(copy)], monkeypatch)
+    assert again == original
+    if suffix == "pcap":
+        assert pcap_lengths(copy) == [(8, 8), (5, 9), (5, 8), (8, 8), (8, 8), (9, 9)]
+    else:
+        assert [(len(raw), comments) for _time, raw, comments in pcapng_packets(copy, 0)][1:3] == [
+            (5, [f"noise: 5 bytes, {PAIRED}"]),
+            (5, ["noise: 5 bytes, captured in part (5 of its 8 bytes; slave 2, function 6): its CRC cannot be checked"])]
+
+
+def test_a_capture_of_records_captured_in_part_is_said_so(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Every record captured in part: the last warning says so. Before: "no valid Modbus RTU frame in 10 bytes
+    (every item is noise or a frame with a bad check): not a Modbus capture, or another format or line speed?",
+    sending the engineer after a format or a line speed when the snapshot length cut the frames."""
+    capture = raw_pcap(tmp_path / "all.pcap", [(0, 8, REQUEST[:5]), (10_000, 9, ANSWER[:5])])
+    out, _framed = engine_output_as_python([str(capture)], monkeypatch)
+    assert out.splitlines()[2:] == [
+        "vw3-decode: warning: record 1: only 5 of its 8 bytes were captured",
+        "vw3-decode: warning: record 2: only 5 of its 9 bytes were captured",
+        f"vw3-decode: warning: {capture}: no frame can be checked: every record was captured in part (2 records, 10"
+        " bytes: a snapshot length shorter than the frames), their CRCs cut off: capture again with a larger snapshot"
+        " length",
+    ]
+    # (a capture with other noise besides is still asked about its format)
+    mixed = raw_pcap(tmp_path / "mixed.pcap", [(0, 3, b"\xff\x00\x13"), (10_000, 9, ANSWER[:5])])
+    out, _framed = engine_output_as_python([str(mixed)], monkeypatch)
+    assert out.splitlines()[-1].startswith(f"vw3-decode: warning: {mixed}: no valid Modbus RTU frame in 8 bytes")
