@@ -443,7 +443,8 @@ def _decode_inputs(
             tell_comments(sinks, path, env.stderr, title if bus is not None else None)
             sinks.copy_end.ended(None if sinks.done else recorded())  # (-c N: the copy ends at the Nth)
             # (-c N may stop in an input's first noise run, before its frames: not judged then.)
-            if sinks.input_bytes and not sinks.valid_frames and path is not None and not sinks.done:
+            if ((sinks.input_bytes or framer.cut_records) and not sinks.valid_frames and path is not None
+                    and not sinks.done):
                 # A PNG, a line read at the wrong speed: say so once, not only as noise and damage
                 # (--hex bytes typed from a manual have their own notes: a CRC typo is spelled out).
                 name = path if path != "-" else "standard input"

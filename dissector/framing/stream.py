@@ -123,7 +123,7 @@ class StreamFramer(ABC):
         self.cut_records = self.cut_bytes = 0
 
     def feed(self, chunk: Chunk) -> list[Item]:
-        if type(chunk) is PartChunk and chunk.data:
+        if type(chunk) is PartChunk:  # (none of its bytes captured too: bytes were lost there all the same)
             return self._cut_part(chunk)
         if chunk.data:
             start = self._base + len(self._buf)

@@ -4,7 +4,9 @@ nothing but such records is said so, a record of which no byte was captured is a
 one item, and --stats counts them apart. Python stages and the compiled engine alike (byte-identical)."""
 from __future__ import annotations
 
+import shutil
 import struct
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -102,3 +104,59 @@ def test_a_capture_of_records_captured_in_part_is_said_so(tmp_path: Path, monkey
     mixed = raw_pcap(tmp_path / "mixed.pcap", [(0, 3, b"\xff\x00\x13"), (10_000, 9, ANSWER[:5])])
     out, _framed = engine_output_as_python([str(mixed)], monkeypatch)
     assert out.splitlines()[-1].startswith(f"vw3-decode: warning: {mixed}: no valid Modbus RTU frame in 8 bytes")
+
+
+@pytest.mark.parametrize("suffix", ["pcap", "pcapng"])
+def test_record_of_no_byte_captured_is_a_cut(suffix: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A record of which none of its 9 bytes were captured is a cut all the same (bytes were lost there): an
+    item of no byte that says so, and the warning. Before: nothing at all between request 1 and the next."""
+    capture = raw_pcap(tmp_path / "zero.pcap", [(0, 8, REQUEST), (10_000, 9, b""), (100_000, 8, REQUEST),
+                                                 (110_000, 9, ANSWER)])
+    if suffix == "pcapng":
+        capture = as_pcapng(capture, tmp_path)
+    out, _framed = engine_output_as_python([str(capture)], monkeypatch)
+    assert out.splitlines() == [
+        "     1     0.000000   2 request   Read Holding Registers 8401..8402 (2) [no response]  CRC ok",
+        "     2     0.010000   - noise     0 bytes of noise at offset 8:  [captured in part (0 of its 9 bytes): its CRC"
+        " cannot be checked]",
+        "     3     0.100000   2 request   Read Holding Registers 8401..8402 (2)  CRC ok",
+        "     4     0.110000   2 response  Read Holding Registers 8401..8402 (2): 8401=3 8402=2 [#3, 10.0 ms]  CRC ok",
+        "vw3-decode: warning: record 2: only 0 of its 9 bytes were captured",
+    ]
+    # (nothing else: said as a capture of nothing but records captured in part)
+    alone = raw_pcap(tmp_path / "alone.pcap", [(0, 9, b"")])
+    out, _framed = engine_output_as_python([str(alone)], monkeypatch)
+    assert out.splitlines()[-1] == (
+        f"vw3-decode: warning: {alone}: no frame can be checked: every record was captured in part (1 record, 0 bytes:"
+        " a snapshot length shorter than the frames), their CRCs cut off: capture again with a larger snapshot length")
+
+
+def as_pcapng(capture: Path, tmp_path: Path) -> Path:
+    """The capture as editcap writes it in pcapng (each record's lengths kept)."""
+    if shutil.which("editcap") is None:
+        pytest.skip("editcap (Wireshark) is not installed")
+    copy = tmp_path / f"{capture.stem}.pcapng"
+    subprocess.run(["editcap", "-F", "pcapng", str(capture), str(copy)], check=True, capture_output=True)
+    return copy
+
+
+@pytest.mark.parametrize("suffix", ["pcap", "pcapng"])
+def test_record_captured_in_part_longer_than_a_chunk(suffix: str, tmp_path: Path,
+                                                    monkeypatch: pytest.MonkeyPatch) -> None:
+    """A record captured in part longer than a chunk (64 KiB): all its 70,000 bytes are the one item (and the
+    answer to the request). Before: its first 65,536 bytes were framed as any (16 noise items of 4,096 bytes),
+    only its last 4,464 bytes the item."""
+    long = ANSWER[:2] + bytes(69_998)
+    capture = raw_pcap(tmp_path / "long.pcap", [(0, 8, REQUEST), (10_000, 80_000, long), (200_000, 8, REQUEST),
+                                                 (210_000, 9, ANSWER)], snaplen=262_144)
+    if suffix == "pcapng":
+        capture = as_pcapng(capture, tmp_path)
+    out, _framed = engine_output_as_python([str(capture), "-T", "fields", "-e", "frame", "-e", "kind", "-e", "length",
+                                            "-e", "reason"], monkeypatch)
+    assert out.splitlines() == [
+        "1\trequest\t8\t",
+        "2\tnoise\t70000\tcaptured in part (70000 of its 80000 bytes; slave 2, function 3; the answer to #1): its CRC"
+        " cannot be checked",
+        "3\trequest\t8\t", "4\tresponse\t9\t",
+        "vw3-decode: warning: record 2: only 70000 of its 80000 bytes were captured",
+    ]

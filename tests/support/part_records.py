@@ -12,10 +12,10 @@ REQUEST, ANSWER, WRITE = rtu("02 03 20d1 0002"), rtu("02 03 04 0003 0002"), rtu(
 CAPTURES = Path(__file__).resolve().parents[2] / "captures"
 
 
-def raw_pcap(path: Path, records: list[tuple[int, int, bytes]]) -> Path:
+def raw_pcap(path: Path, records: list[tuple[int, int, bytes]], snaplen: int = 65535) -> Path:
     """A pcap (USER0) of (microseconds after T, original length, captured bytes) records."""
     with path.open("wb") as out:
-        out.write(struct.pack("<IHHiIII", 0xA1B2C3D4, 2, 4, 0, 0, 65535, 147))
+        out.write(struct.pack("<IHHiIII", 0xA1B2C3D4, 2, 4, 0, 0, snaplen, 147))
         for micros, original, data in records:
             out.write(struct.pack("<IIII", T + micros // 1_000_000, micros % 1_000_000, len(data), original) + data)
     return path
