@@ -60,7 +60,7 @@ def test_every_output_says_captured_in_part(option: list[str], tmp_path: Path,
         assert lines[:6] == ["1\trequest\t", f"2\tnoise\t{PAIRED_ANSWER}", f"3\tnoise\t{CUT_WRITE}", "4\trequest\t",
                              "5\trequest\t", "6\tresponse\t"]
     elif option == ["--stats"]:
-        assert lines[0] == "4 frames, 10 noise bytes in 2 runs"
+        assert lines[0] == "4 frames, 0 noise bytes in 0 runs, 2 records captured in part (10 bytes)"
     elif option == ["-Y", "kind == \"noise\""]:
         assert lines == TWO_CUT_LINES[1:3] + WARNINGS
 

@@ -4,6 +4,7 @@ nothing but such records is said so, a record of which no byte was captured is a
 one item, and --stats counts them apart. Python stages and the compiled engine alike (byte-identical)."""
 from __future__ import annotations
 
+import json
 import shutil
 import struct
 import subprocess
@@ -160,3 +161,15 @@ def test_record_captured_in_part_longer_than_a_chunk(suffix: str, tmp_path: Path
         "3\trequest\t8\t", "4\tresponse\t9\t",
         "vw3-decode: warning: record 2: only 70000 of its 80000 bytes were captured",
     ]
+
+
+def test_stats_count_records_captured_in_part_apart(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """--stats counts records captured in part apart from line noise (a snapshot length cut them). Before: '4 frames,
+    10 noise bytes in 2 runs', as if the line were noisy."""
+    mixed = raw_pcap(tmp_path / "mixed.pcap", [(0, 3, b"\xff\x00\x13"), (10_000, 8, REQUEST), (20_000, 9, ANSWER[:5]),
+                                                (100_000, 8, WRITE[:5])])
+    out, _framed = engine_output_as_python([str(mixed), "--stats"], monkeypatch)
+    assert out.splitlines()[0] == "1 frame, 3 noise bytes in 1 run, 2 records captured in part (10 bytes)"
+    out, _framed = engine_output_as_python([str(mixed), "--stats", "--json"], monkeypatch)
+    report = json.loads(out.splitlines()[0])
+    assert (report["noise"], report["captured_in_part"]) == ({"items": 1, "bytes": 3}, {"items": 2, "bytes": 10})
