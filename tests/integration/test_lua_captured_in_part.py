@@ -101,3 +101,17 @@ def test_request_whose_answer_is_captured_in_part(tmp_path: Path) -> None:
         "2 Read Holding Registers request 8401..8402 (2)\tanswer captured in part in #2",
         f"noise (5 bytes) [{PAIRED_ANSWER}]\t5 bytes outside any frame: {PAIRED_ANSWER}",
     ]
+
+
+def test_record_of_no_byte_captured(tmp_path: Path) -> None:
+    """A record of which none of its 9 bytes were captured is a cut in the plugin too: an item of no byte that
+    says so (before: nothing shown for it), as vw3-decode in one pass and two."""
+    from helpers import rtu
+
+    request, answer = rtu("02 03 20d1 0002"), rtu("02 03 04 0003 0002")
+    capture = raw_pcap(tmp_path / "zero.pcap", [(0, 8, request), (10_000, 9, b""), (100_000, 8, request),
+                                                 (110_000, 9, answer)])
+    assert_as_vw3_decode_in_one_and_two_passes(capture, LATER)
+    assert reasons(capture) == [
+        (1, "request", ""), (2, "noise", "captured in part (0 of its 9 bytes): its CRC cannot be checked"),
+        (3, "request", ""), (4, "response", "")]
