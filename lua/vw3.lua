@@ -6853,6 +6853,32 @@ local function pair(st, f)
   end
 end
 
+-- A record captured in part (vw3.stream's cut_stream), numbered, of the open request's slave and function (or
+-- its exception's), within the timeout: the slave answered, its answer's bytes cut by the snapshot length
+-- (pairing.py _answer_in_part, ANSWER_IN_PART). The request is answered, its note names the item, whose reason
+-- names the request (`...; slave 2, function 3; the answer to #1): its CRC cannot be checked`).
+local function pair_part(st, item)
+  local pending, timeout = st.pending, st.timeout
+  if pending == nil or pending.answerless then return end
+  if timeout ~= nil and item.time ~= nil and pending.time ~= nil and (item.time - pending.time) / NS > timeout then
+    return
+  end
+  local reason = item.reason
+  local slave, code = reason:match("; slave (%d+), function (%d+)%)")
+  if slave == nil then slave = reason:match("; slave (%d+)%)") end
+  -- (`+ 0`: the digits as a number, as tonumber would, without binding one more global here)
+  if slave == nil or slave + 0 ~= pending.slave then return end
+  if code ~= nil and code % 128 ~= pending.fn then return end
+  note(pending, "answer captured in part in #" .. item.number)
+  local at = reason:find("): ", 1, true)
+  item.reason = reason:sub(1, at - 1) .. "; the answer to #" .. pending.number .. reason:sub(at)
+  pending.fields = nil
+  release_run(pending.registers)
+  st.pending = nil
+  -- (the stream starts clean after the cut: it awaits nothing, as the pairing now)
+  if st.retried ~= nil or st.echoed ~= nil then st.retried, st.echoed = nil, nil end
+end
+
 -- The capture ends with request f awaiting its answer (the second pass: the first has read it all):
 -- pairing.py capture_ended. The capture's last record (any stream's, empty or not: recorded_until; else
 -- st.times' last time, as Dissector.finish takes the later) later than the timeout after f: the master gave

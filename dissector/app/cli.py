@@ -25,6 +25,7 @@ from dissector.app.options import PROG, DecodeOptions, build_parser, decode_opti
 from dissector.app.paths import decode_one
 from dissector.model import Frame, Item
 from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
+from dissector.render.describe import count_text
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args
 from dissector.devices.maps_refs import map_warnings
@@ -442,16 +443,25 @@ def _decode_inputs(
             tell_comments(sinks, path, env.stderr, title if bus is not None else None)
             sinks.copy_end.ended(None if sinks.done else recorded())  # (-c N: the copy ends at the Nth)
             # (-c N may stop in an input's first noise run, before its frames: not judged then.)
-            if sinks.input_bytes and not sinks.valid_frames and path is not None and not sinks.done:
+            if ((sinks.input_bytes or framer.cut_records) and not sinks.valid_frames and path is not None
+                    and not sinks.done):
                 # A PNG, a line read at the wrong speed: say so once, not only as noise and damage
                 # (--hex bytes typed from a manual have their own notes: a CRC typo is spelled out).
                 name = path if path != "-" else "standard input"
-                hint = " (it holds Modbus ASCII frames: try --mode ascii)" if mode == "rtu" and holds_ascii(path) else ""
-                env.stderr.write(
-                    f"{PROG}: warning: {shown(name)}: no valid Modbus {mode.upper()} frame in {sinks.input_bytes} bytes "
-                    "(every item is noise or a frame with a bad check): not a Modbus capture, or another format "
-                    f"or line speed?{hint}\n"
-                )
+                if framer.cut_bytes == sinks.input_bytes:  # (every record captured in part: no other format)
+                    env.stderr.write(
+                        f"{PROG}: warning: {shown(name)}: no frame can be checked: every record was captured in part "
+                        f"({count_text(framer.cut_records, 'record')}, {count_text(framer.cut_bytes, 'byte')}: a "
+                        f"snapshot length shorter than the frames), their {'LRC' if mode == 'ascii' else 'CRC'}s cut "
+                        "off: capture again with a larger snapshot length\n")
+                else:
+                    hint = (" (it holds Modbus ASCII frames: try --mode ascii)"
+                            if mode == "rtu" and holds_ascii(path) else "")
+                    env.stderr.write(
+                        f"{PROG}: warning: {shown(name)}: no valid Modbus {mode.upper()} frame in {sinks.input_bytes} "
+                        "bytes (every item is noise or a frame with a bad check): not a Modbus capture, or another "
+                        f"format or line speed?{hint}\n"
+                    )
     except BaseException as error:
         sinks.abandon(isinstance(error, SourceError))
         raise

@@ -51,6 +51,7 @@ from __future__ import annotations
 
 import weakref
 
+from dissector.framing.stream import part_answering, part_fields
 from dissector.model import CUT_ANSWER, Frame, Item, Kind, Noise, stamped_before
 from dissector.protocol import table
 from dissector.protocol.rules import awaits_answer, echoed, text
@@ -63,6 +64,8 @@ SAME_SHAPE = frozenset(
 )
 # FC8's sub-functions that enter and leave Listen Only Mode (Application Protocol 6.8.1).
 DIAGNOSTICS, LISTEN_ONLY, RESTART = 8, 4, 1
+# The note of a request whose answer a record captured in part holds (_answer_in_part); pairing.lua says the same.
+ANSWER_IN_PART = "answer captured in part in #{number}"
 
 
 def capture_ended(request: Frame, cut: str | None = None, waited: float | None = None,
@@ -211,6 +214,8 @@ class Pairer:
 
     def _push_one(self, item: Item, out: list[Item]) -> None:
         if not isinstance(item, Frame):
+            if isinstance(item, Noise) and self._pending is not None and not self._answerless:
+                self._answer_in_part(item)
             self._enqueue(item, out)
             return
         pending = self._pending
@@ -320,6 +325,30 @@ class Pairer:
         if backwards is not None:  # (numbered now)
             ahead_ms = (backwards.time - item.time) * 1000  # type: ignore[operator]
             item.warnings.append(text("backwards", ahead_ms=ahead_ms, number=backwards.number))
+
+    def _answer_in_part(self, noise: Noise) -> None:
+        """A record captured in part (framing/stream.py _cut_part) of the open request's slave and function (or
+        its exception's), within the timeout: the slave answered, its answer's bytes cut by the snapshot length.
+        The request is answered (not `[no response]`, nor counted so), its note names the item, whose reason
+        names the request. Before, the request was unanswered: an engineer was told the slave did not answer."""
+        pending = self._pending
+        assert pending is not None
+        fields = part_fields(noise.reason)
+        if fields is None or self._late(pending, noise.time):
+            return
+        slave, function = fields
+        if slave != pending.slave or (function is not None and function & 0x7F != pending.function):
+            return
+        queue = self._queue  # (items are numbered as they are released, in order: pending may still be held)
+        if not self._pending_released:
+            pending.notes.append(ANSWER_IN_PART.format(number=self._count + len(queue) + 1))
+            asked = self._count + 1 + next(index for index, queued in enumerate(queue) if queued is pending)
+        else:
+            asked = pending.number
+        noise.reason = part_answering(noise.reason, asked)
+        self._pending = None
+        # (the framer starts clean after the cut: it awaits nothing, as the pairer now)
+        self._retried = self._echoed = self._expired = None
 
     def _answered(self, request: Frame) -> bool:
         """Would a server answer this request (not one the spec has none answer, not to a slave in Listen Only

@@ -7,6 +7,7 @@ time would be, fed one by one (live capture fed those from 4173324 to 09ae941, a
 its own: 5 times the work, bench/live_feed.py)."""
 from __future__ import annotations
 
+import re
 from abc import ABC, abstractmethod
 
 from dissector.framing.answers import answer_length
@@ -28,6 +29,37 @@ GLITCHY_AFTER = 3
 GLITCH_SCORE_MAX = 8
 # The reason of the item a record captured in part is (StreamFramer._cut_part); lua/src/stream.lua says the same.
 CAPTURED_IN_PART = "captured in part"
+_PART_FIELDS = re.compile(r"; slave (\d+)(?:, function (\d+))?\)")
+
+
+def part_fields(reason: str) -> tuple[int, int | None] | None:
+    """The slave and function (None: not captured) a record captured in part's reason names (_part_fields);
+    None: no slave is known, or the reason is another's (the pairing matches the answer awaited with them)."""
+    if not reason.startswith(CAPTURED_IN_PART):
+        return None
+    found = _PART_FIELDS.search(reason)
+    if found is None:
+        return None
+    return int(found[1]), None if found[2] is None else int(found[2])
+
+
+_PART_LENGTHS = re.compile(r"\((\d+) of its (\d+) bytes")
+
+
+def part_lengths(reason: str) -> tuple[int, int] | None:
+    """The (captured, original) lengths a record captured in part's reason names (_cut_part); None: another's
+    (-w writes the record with both, as it was read: render/capturefile.py)."""
+    if not reason.startswith(CAPTURED_IN_PART):
+        return None
+    found = _PART_LENGTHS.match(reason, len(CAPTURED_IN_PART) + 1)
+    return None if found is None else (int(found[1]), int(found[2]))
+
+
+def part_answering(reason: str, number: int) -> str:
+    """The reason of a record captured in part that answers request #number (pairing.py): it says so in
+    its parentheses (`...; slave 2, function 3; the answer to #1): its CRC cannot be checked`)."""
+    head, sep, tail = reason.partition("): ")
+    return f"{head}; the answer to #{number}{sep}{tail}"
 
 
 class StreamFramer(ABC):
@@ -87,9 +119,11 @@ class StreamFramer(ABC):
         self._framed_end = -1  # absolute offset where the last frame ends (-1: none yet): a bound (bounded.py)
         self._cut_by_silence = False  # finish(silence=True) runs: what it cuts, a silence cuts
         self._ready: list[Item] = []  # items made where no call gives them out (take_over's cut), for the next
+        # Records captured in part cut (_cut_part) and their bytes: a capture of nothing else is said so (app/cli.py).
+        self.cut_records = self.cut_bytes = 0
 
     def feed(self, chunk: Chunk) -> list[Item]:
-        if type(chunk) is PartChunk and chunk.data:
+        if type(chunk) is PartChunk:  # (none of its bytes captured too: bytes were lost there all the same)
             return self._cut_part(chunk)
         if chunk.data:
             start = self._base + len(self._buf)
@@ -142,6 +176,8 @@ class StreamFramer(ABC):
         if chunk.time is not None:
             self._timed = True
         items.append(Noise(offset=start, raw=data, time=chunk.time, reason=reason))
+        self.cut_records += 1
+        self.cut_bytes += len(data)
         end = start + len(data)
         self.restart_at(end, None)
         self._framed_end = -1  # (no frame ends there: the next record starts at a boundary)

@@ -32,6 +32,7 @@ from collections.abc import Iterator
 from typing import BinaryIO, Protocol
 
 from dissector.framing.rules import spans_a_frame
+from dissector.framing.stream import part_lengths
 from dissector.model import Item, Noise
 from dissector.render.describe import count_text
 from dissector.render.pcapngwriter import PcapngWriter
@@ -61,7 +62,7 @@ class RecordWriter(Protocol):
     clamped: int
 
     def write(self, data: bytes, timestamp: float | None = None,
-              comment: str | list[str] | None = None) -> None: ...
+              comment: str | list[str] | None = None, original: int | None = None) -> None: ...
 
     def use_interface(self, name: str | None, description: str | None, units: int | None = None) -> None: ...
 
@@ -263,9 +264,10 @@ class CaptureOutput:
                     pass
 
     def write(self, data: bytes, timestamp: float | None = None,
-              comment: str | list[str] | None = None, continued: bool = False) -> None:
+              comment: str | list[str] | None = None, continued: bool = False, original: int | None = None) -> None:
         """`comment`: a list is a comment each (pcapng); `continued`: the record goes on an item begun in the
-        record before, in the same file (each file of a ring decodes as its part of the decode)."""
+        record before, in the same file (each file of a ring decodes as its part of the decode); `original`: the
+        record's length on the line, when only its bytes `data` of it were captured (RecordWriter.write)."""
         if self._writer is None:
             raise OSError("the capture file is closed")
         ring = self.ring
@@ -276,7 +278,10 @@ class CaptureOutput:
                     self._next()
             else:
                 self._switch_on(timestamp, ring)
-        self._writer.write(data, timestamp, comment)
+        if original is None:
+            self._writer.write(data, timestamp, comment)
+        else:
+            self._writer.write(data, timestamp, comment, original)
         self._in_file += 1
         if ring is not None and ring.filesize is not None and self._writer.size >= ring.filesize * 1000:
             self._full = True
@@ -354,6 +359,9 @@ class CaptureOutput:
             self._write_record(data, time, own, users, continued)
         for item in items:
             split = pieces.get(id(item)) if pieces else None
+            if isinstance(item, Noise) and (lengths := part_lengths(item.reason)) is not None:
+                self._part(item, lengths[1] - lengths[0], split)
+                continue
             lead = None
             if split is not None and split[0][3] < item.offset:
                 lead = self._absorb(split[0][3], item.offset, split[0][0])
@@ -369,6 +377,16 @@ class CaptureOutput:
             for end, time, comments, _start in split:
                 self._piece(item, begin, end, time, list(comments), lead if begin == 0 else None)
                 begin = end
+
+    def _part(self, item: Noise, lost: int, split: list[Piece] | None) -> None:
+        """A record captured in part (framing/stream.py _cut_part) is written as it was read: its bytes, and its
+        length on the line `lost` bytes more (as editcap -s writes it), so that the copy reads back as a cut
+        again. Before, written whole, its bytes and the next record's read back as a CRC BAD frame. The stream
+        was closed before it as at an input's end (the framer frames it so): what is held is written first,
+        as release writes it, and nothing joins it."""
+        self.release()
+        users = [text for piece in split for text in piece[2]] if split else []
+        self.write(item.raw, item.time, [*users, noise_comment(item) or ""], original=item.length + lost)
 
     def _absorb(self, anchor: int, offset: int, length: int) -> HeldRecord | None:
         """The records not yet written holding the bytes anchor..offset, taken out as one (one that begins

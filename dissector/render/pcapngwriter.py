@@ -117,8 +117,10 @@ class PcapngWriter:
         if self._flush:
             self._stream.flush()
 
-    def write(self, data: bytes, timestamp: float | None = None, comment: str | list[str] | None = None) -> None:
-        """`comment`: a list is an opt_comment each (the input's packet comments, then vw3-decode's)."""
+    def write(self, data: bytes, timestamp: float | None = None, comment: str | list[str] | None = None,
+              original: int | None = None) -> None:
+        """`comment`: a list is an opt_comment each (the input's packet comments, then vw3-decode's); `original`:
+        the record's length on the line when only part of it was captured (pcapwriter.PcapWriter.write)."""
         comments = [comment] if isinstance(comment, str) else comment or []
         if timestamp is None:  # (untimed: at the epoch, as the readers take it back: sources/pcap.py EpochRecord)
             timestamp = 0.0
@@ -128,7 +130,8 @@ class PcapngWriter:
         self.clamped += moved
         units = seconds * per_second + fraction
         body = (
-            struct.pack("<IIIII", self._interface, units >> 32, units & 0xFFFFFFFF, len(data), len(data))
+            struct.pack("<IIIII", self._interface, units >> 32, units & 0xFFFFFFFF, len(data),
+                        len(data) if original is None else max(original, len(data)))
             + data
             + b"\0" * (-len(data) % 4)
             + _options([(OPT_COMMENT, text) for text in comments if text])

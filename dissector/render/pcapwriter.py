@@ -71,17 +71,21 @@ class PcapWriter:
         if flush:
             stream.flush()
 
-    def write(self, data: bytes, timestamp: float | None = None, comment: str | list[str] | None = None) -> None:
+    def write(self, data: bytes, timestamp: float | None = None, comment: str | list[str] | None = None,
+              original: int | None = None) -> None:
         """Append one record; without a timestamp (an untimed record), at the epoch: the previous one's time
         made an untimed input after a timed one timed (its answers '0.0 ms' after their requests), and so
-        an untimed record inside a timed capture. pcap has no place for a comment: it is for pcapng's sake."""
+        an untimed record inside a timed capture. pcap has no place for a comment: it is for pcapng's sake.
+        `original`: the record's length on the line, more than its bytes' for a record captured in part (as
+        editcap -s writes it; None: its bytes are all of it)."""
         if timestamp is None:  # (untimed: at the epoch, as the readers take it back: sources/pcap.py EpochRecord)
             timestamp = 0.0
         units = self._units
         seconds, fraction, moved = clamp_time(*split_time(timestamp, units), PCAP_SECONDS_MAX, units)
         self.clamped += moved
         # One write(2) a record (unbuffered streams): a reader never sees a header without its bytes.
-        self._stream.write(_RECORD_HEADER.pack(seconds, fraction, len(data), len(data)) + data)
+        whole = len(data) if original is None else max(original, len(data))
+        self._stream.write(_RECORD_HEADER.pack(seconds, fraction, len(data), whole) + data)
         self.size += _RECORD_HEADER.size + len(data)
         if self._flush:
             self._stream.flush()

@@ -43,6 +43,7 @@ from typing import Any
 
 from rich.console import RenderableType
 
+from dissector.framing.stream import CAPTURED_IN_PART
 from dissector.model import Frame, Item, Kind, Noise
 from dissector.render import tables
 from dissector.render.describe import count_text
@@ -103,6 +104,9 @@ class StatsCollector:
         self.frames = 0
         self.noise_items = 0
         self.noise_bytes = 0
+        # Records captured in part (framing/stream.py _cut_part): bytes a snapshot length cut, not line noise.
+        self.part_items = 0
+        self.part_bytes = 0
         self.first_time: float | None = None
         self.last_time: float | None = None
         self.poll = PollCycle()
@@ -166,8 +170,12 @@ class StatsCollector:
                 self.first_time = item.time
             self.last_time = item.time
         if isinstance(item, Noise):
-            self.noise_items += 1
-            self.noise_bytes += item.length
+            if item.reason.startswith(CAPTURED_IN_PART):
+                self.part_items += 1
+                self.part_bytes += item.length
+            else:
+                self.noise_items += 1
+                self.noise_bytes += item.length
             return
         self.frames += 1
         stats = self._function(item.slave, item.function)
@@ -269,6 +277,7 @@ class StatsCollector:
         return {
             "frames": self.frames + self.store.frames,
             "noise": {"items": self.noise_items, "bytes": self.noise_bytes},
+            "captured_in_part": {"items": self.part_items, "bytes": self.part_bytes},
             "duration": None if first_time is None or last_time is None else last_time - first_time,
             "registers_without_address": self.history.registers_without_address,
             "half_values": self.history.half_values,
@@ -342,6 +351,9 @@ class StatsCollector:
             f"{count_text(report['frames'], 'frame')}, {count_text(report['noise']['bytes'], 'noise byte')} in "
             f"{count_text(report['noise']['items'], 'run')}"
         )
+        if report["captured_in_part"]["items"]:  # (not line noise: a snapshot length cut them, CRC unchecked)
+            cut = report["captured_in_part"]
+            summary += f", {count_text(cut['items'], 'record')} captured in part ({count_text(cut['bytes'], 'byte')})"
         if report["registers_without_address"]:
             without = count_text(report['registers_without_address'], 'register value')
             summary += f", {without} without an address"

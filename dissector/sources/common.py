@@ -244,11 +244,14 @@ def record_chunks(
     the bytes that are there are still delivered, with a warning and no boundary. `stamped` is given an
     RTAC record's own time, once its header is read: a record of the header alone (an RTAC event: a
     break, a control line) yields no chunk, yet says the tap was recording then (recorded_until). A record
-    captured in part (`original`, its length on the line, more than `length`) ends in a PartChunk.
+    captured in part (`original`, its length on the line, more than `length`) is one PartChunk, all its bytes
+    (before, a record longer than a chunk was cut after its last chunk alone, the others framed as whole bytes),
+    none too (0 of its 9 bytes: bytes were lost there all the same; before, no chunk and no cut).
     """
     remaining = length
     first = True
     header_size = 0
+    part = bytearray() if original > length else None  # (at most a record's MAX_PACKET bytes: pcap.py, pcapng.py)
     while remaining > 0:
         wanted = min(remaining, chunk_size)
         piece = inp.read(wanted)
@@ -271,9 +274,13 @@ def record_chunks(
             if stamped is not None and time is not None:
                 stamped(time)
         first = False
-        if piece and remaining == 0 and not cut and original > length:
-            yield PartChunk(piece, time, True, record, (), length - header_size, original - header_size)
+        if part is not None:
+            part += piece
+            if cut and part:  # (the input ends inside it: its bytes as any record's there, no cut)
+                yield Chunk(bytes(part), time, False)
         elif piece:
             yield Chunk(piece, time, remaining == 0 and not cut)
         if cut:
             return
+    if part is not None and not (first and linktype == LINKTYPE_RTAC_SERIAL):  # (an RTAC's header: read above)
+        yield PartChunk(bytes(part), time, True, record, (), length - header_size, original - header_size)

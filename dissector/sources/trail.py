@@ -32,12 +32,16 @@ from dissector.sources.common import NotedChunk
 # The comments vw3-decode writes on the records of a -w copy (render/capturefile.py noise_comment,
 # CaptureOutput.write_items and release, joined by "; "): its decode's own words, which every decode of
 # the copy says again. Read back they are no packet comment: a copy of a copy does not say them twice.
-_OWN_PART = re.compile(r"(?:then )?noise: \d+ bytes?, .+|then a damaged frame \(\d+ bytes\)|a frame \(\d+ bytes?\)")
+# A record captured in part's reason holds "; " itself (framing/stream.py _cut_part: `captured in part (5 of its
+# 9 bytes; slave 2, function 3; the answer to #1): its CRC cannot be checked`), the other reasons none.
+_OWN_PART = (r"(?:(?:then )?noise: \d+ bytes?, (?:captured in part \([^()]*\): its [CL]RC cannot be checked|(?:(?!; ).)+)"
+             r"|then a damaged frame \(\d+ bytes\)|a frame \(\d+ bytes?\))")
+_OWN = re.compile(rf"{_OWN_PART}(?:; {_OWN_PART})*")
 
 
 def own_comment(text: str) -> bool:
     """Is a pcapng comment one vw3-decode writes of its decode (above)?"""
-    return all(_OWN_PART.fullmatch(part) for part in text.split("; "))
+    return _OWN.fullmatch(text) is not None
 
 
 # A piece of an item: (its end, counted from the item's first byte; its time; the comments of its records;

@@ -12,11 +12,11 @@ from pathlib import Path
 import pytest
 
 from helpers import engine_output_as_python, run_cli
-from part_records import ANSWER, CAPTURES, CUT_ANSWER, CUT_WRITE, REQUEST, raw_pcap, records_of, rtac_two_cut, two_cut
+from part_records import ANSWER, CAPTURES, CUT_ANSWER, CUT_WRITE, PAIRED_ANSWER, REQUEST, raw_pcap, records_of, rtac_two_cut, two_cut
 
 TWO_CUT_LINES = [
-    "     1     0.000000   2 request   Read Holding Registers 8401..8402 (2) [no response]  CRC ok",
-    f"     2     0.010000   - noise     5 bytes of noise at offset 8: 02 03 04 00 03 [{CUT_ANSWER}]",
+    "     1     0.000000   2 request   Read Holding Registers 8401..8402 (2) [answer captured in part in #2]  CRC ok",
+    f"     2     0.010000   - noise     5 bytes of noise at offset 8: 02 03 04 00 03 [{PAIRED_ANSWER}]",
     f"     3     0.100000   - noise     5 bytes of noise at offset 13: 02 06 20 d1 00 [{CUT_WRITE}]",
     "     4     0.110000   2 request   Write Single Register 8401 = 1 [no response]  CRC ok",
     "     5     0.200000   2 request   Read Holding Registers 8401..8402 (2)  CRC ok",
@@ -48,19 +48,19 @@ def test_every_output_says_captured_in_part(option: list[str], tmp_path: Path,
     lines = out.splitlines()
     assert "CRC BAD" not in out and "CRC bad" not in out
     if option == ["-V"]:
-        assert f"    Reason: {CUT_ANSWER}" in lines and f"    Reason: {CUT_WRITE}" in lines
+        assert f"    Reason: {PAIRED_ANSWER}" in lines and f"    Reason: {CUT_WRITE}" in lines
         assert "CRC BAD" not in out
     elif option == ["--json"]:
         items = [json.loads(line) for line in lines if line.startswith("{")]
         assert [(item["kind"], item.get("reason")) for item in items] == [
-            ("request", None), ("noise", CUT_ANSWER), ("noise", CUT_WRITE), ("request", None), ("request", None),
+            ("request", None), ("noise", PAIRED_ANSWER), ("noise", CUT_WRITE), ("request", None), ("request", None),
             ("response", None)]
         assert [item["raw"] for item in items[1:3]] == ["0203040003", "020620d100"]
     elif option[0] == "-T":
-        assert lines[:6] == ["1\trequest\t", f"2\tnoise\t{CUT_ANSWER}", f"3\tnoise\t{CUT_WRITE}", "4\trequest\t",
+        assert lines[:6] == ["1\trequest\t", f"2\tnoise\t{PAIRED_ANSWER}", f"3\tnoise\t{CUT_WRITE}", "4\trequest\t",
                              "5\trequest\t", "6\tresponse\t"]
     elif option == ["--stats"]:
-        assert lines[0] == "4 frames, 10 noise bytes in 2 runs"
+        assert lines[0] == "4 frames, 0 noise bytes in 0 runs, 2 records captured in part (10 bytes)"
     elif option == ["-Y", "kind == \"noise\""]:
         assert lines == TWO_CUT_LINES[1:3] + WARNINGS
 
@@ -73,13 +73,14 @@ def test_ascii_record_captured_in_part(tmp_path: Path, monkeypatch: pytest.Monke
         (0, len(request), request), (10_000, len(answer), answer[:7]), (100_000, len(request), request),
         (110_000, len(answer), answer)])
     out, _framed = engine_output_as_python([str(capture), "--mode", "ascii", "-V"], monkeypatch)
-    assert ("    Reason: captured in part (7 of its 19 bytes; slave 2, function 3): its LRC cannot be checked"
+    assert ("    Reason: captured in part (7 of its 19 bytes; slave 2, function 3; the answer to #1): its LRC cannot be"
+            " checked"
             in out.splitlines())
     out, _framed = engine_output_as_python([str(capture), "--mode", "ascii"], monkeypatch)
     assert out.splitlines()[:4] == [
-        "     1     0.000000   2 request   Read Holding Registers 8193..8194 (2) [no response]  LRC ok",
+        "     1     0.000000   2 request   Read Holding Registers 8193..8194 (2) [answer captured in part in #2]  LRC ok",
         "     2     0.010000   - noise     7 bytes of noise at offset 17: 3a 30 32 30 33 30 34 [captured in part (7 of"
-        " its 19 bytes; slave 2, function 3): its LRC cannot be checked]",
+        " its 19 bytes; slave 2, function 3; the answer to #1): its LRC cannot be checked]",
         "     3     0.100000   2 request   Read Holding Registers 8193..8194 (2)  LRC ok",
         "     4     0.110000   2 response  Read Holding Registers 8193..8194 (2): 8193=3 8194=2 [#3, 10.0 ms]  LRC ok",
     ]
@@ -158,7 +159,8 @@ def test_engine_hands_a_cut_record_over(block_bytes: int, read_bytes: int, tmp_p
                                            "-e", "reason"], monkeypatch)
     lines = out.splitlines()
     assert lines[20] == "21\trequest\t"
-    assert lines[21] == "22\tnoise\tcaptured in part (6 of its 9 bytes; slave 2, function 3): its CRC cannot be checked"
+    assert lines[21] == ("22\tnoise\tcaptured in part (6 of its 9 bytes; slave 2, function 3; the answer to #21): its CRC"
+                         " cannot be checked")
     assert lines[40:43] == ["41\tnoise\tcaptured in part (3 of its 8 bytes; slave 2, function 3): its CRC cannot be checked",
                             "42\tresponse\t", "vw3-decode: warning: record 22: only 6 of its 9 bytes were captured"]
     summary, _framed = engine_output_as_python([str(capture)], monkeypatch)
@@ -191,7 +193,7 @@ def test_rtac_record_captured_in_part(tmp_path: Path, monkeypatch: pytest.Monkey
     ]
     out, _framed = engine_output_as_python([str(rtac_two_cut(tmp_path)), "-V"], monkeypatch)
     assert [line for line in out.splitlines() if line.startswith("    Reason: ")] == [
-        f"    Reason: {CUT_ANSWER}", f"    Reason: {CUT_WRITE}"]
+        f"    Reason: {PAIRED_ANSWER}", f"    Reason: {CUT_WRITE}"]
 
 
 @pytest.mark.skipif(shutil.which("editcap") is None, reason="editcap (Wireshark) is not installed")

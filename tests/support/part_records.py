@@ -12,10 +12,10 @@ REQUEST, ANSWER, WRITE = rtu("02 03 20d1 0002"), rtu("02 03 04 0003 0002"), rtu(
 CAPTURES = Path(__file__).resolve().parents[2] / "captures"
 
 
-def raw_pcap(path: Path, records: list[tuple[int, int, bytes]]) -> Path:
+def raw_pcap(path: Path, records: list[tuple[int, int, bytes]], snaplen: int = 65535) -> Path:
     """A pcap (USER0) of (microseconds after T, original length, captured bytes) records."""
     with path.open("wb") as out:
-        out.write(struct.pack("<IHHiIII", 0xA1B2C3D4, 2, 4, 0, 0, 65535, 147))
+        out.write(struct.pack("<IHHiIII", 0xA1B2C3D4, 2, 4, 0, 0, snaplen, 147))
         for micros, original, data in records:
             out.write(struct.pack("<IIII", T + micros // 1_000_000, micros % 1_000_000, len(data), original) + data)
     return path
@@ -31,6 +31,8 @@ def two_cut(tmp_path: Path) -> Path:
 
 
 CUT_ANSWER = "captured in part (5 of its 9 bytes; slave 2, function 3): its CRC cannot be checked"
+# The answer's item once paired with its request #1 (decode/pairing.py _answer_in_part), and the request's note.
+PAIRED_ANSWER = "captured in part (5 of its 9 bytes; slave 2, function 3; the answer to #1): its CRC cannot be checked"
 CUT_WRITE = "captured in part (5 of its 8 bytes; slave 2, function 6): its CRC cannot be checked"
 
 
