@@ -6894,7 +6894,7 @@ local function ended(st, f)
   if timeout == nil or waited == nil or waited <= 0 then return false, PLAIN.capture_ends_unknown end
   return false, say("capture_ends_within", { waited_ms = waited * 1000, timeout_ms = timeout * 1000 })
 end
-M.ended, M.pair = ended, pair
+M.ended, M.pair, M.pair_part = ended, pair, pair_part
 end
 
 -- ---- vw3.maps: lua/src/maps.lua ----
@@ -8927,10 +8927,10 @@ local build_device, check_references, collectgarbage = build_device, check_refer
 local crc_slot, crc_string_ok, cut_stream, data_bytes = crc_slot, crc_string_ok, cut_stream, data_bytes
 local decode_frame, device_for, device_now, feed = decode_frame, device_for, device_now, feed
 local feed_whole, head_slot, ipairs, lane, math, new_state = feed_whole, head_slot, ipairs, lane, math, new_state
-local next, pack, pair, pairs, pcall, put_flat, release_run = next, pack, pair, pairs, pcall, put_flat, release_run
-local remember_writes, run_slot, sample_mode, span_slot = remember_writes, run_slot, sample_mode, span_slot
-local story, string, string_of, takes_whole, tostring, type = story, string, string_of, takes_whole, tostring, type
-local warn, whole_crc_good = warn, whole_crc_good
+local next, pack, pair, pair_part, pairs, pcall, put_flat = next, pack, pair, pair_part, pairs, pcall, put_flat
+local release_run, remember_writes, run_slot, sample_mode = release_run, remember_writes, run_slot, sample_mode
+local span_slot, story, string, string_of, takes_whole = span_slot, story, string, string_of, takes_whole
+local tostring, type, warn, whole_crc_good = tostring, type, warn, whole_crc_good
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -9383,7 +9383,7 @@ local function cut_part(st, bytes, time, number, part) -- (captured in part: str
   local items = feed(st, "", nil, false, true)
   local record = cut_stream(st, bytes, time, part, number, items)
   take_items(st, items, record, true)
-  return record
+  return record, pair_part(st, items[#items]) -- (numbered, it may answer the request awaited: pairing.lua)
 end
 
 dissect_record = function(st, bytes, time, number)
@@ -10754,7 +10754,7 @@ end
 local function dissect_now(st, tvb, pinfo, number, bytes)
   bytes = bytes or tvb_raw(tvb)
   local n = #bytes
-  if n == 0 then return nil end
+  if n == 0 and lane.parts[number] == nil then return nil end -- (one captured in part of no byte: a cut all the same)
   local time = record_ns(pinfo, number)
   if number >= newest_record then
     newest_record = number
@@ -10848,7 +10848,7 @@ local function sample_and_dissect(st, tvb, pinfo, number)
     st.sample = sample
   end
   local bytes = tvb_raw(tvb)
-  if bytes == "" then return nil end -- (as dissect_now: nothing for an empty record)
+  if bytes == "" then return dissect_now(st, tvb, pinfo, number, bytes) end -- (nothing, unless captured in part)
   sample.text = sample.text .. bytes:sub(1, MODE_REACH - #sample.text)
   -- (ended: what vw3-decode would choose were the capture to end here; one look at the bytes gives both, and
   -- the bytes of the records before are not scanned again: sample.scan)

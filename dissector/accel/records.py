@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 from dissector.framing.timing import LineTiming, silence_before
 from dissector.model import Chunk, Stamp
-from dissector.sources.common import LINKTYPE_USER0
+from dissector.sources.common import LINKTYPE_USER0, PartChunk
 
 if TYPE_CHECKING:
     from dissector.sources.trail import RecordTrail
@@ -75,7 +75,7 @@ class BlockBuilder:
 
     def add(self, chunk: Chunk) -> Iterator[Block]:
         data = chunk.data
-        if not data:
+        if not data and type(chunk) is not PartChunk:  # (a record of which no byte was captured: a cut all the same)
             return
         time = chunk.time
         flag = RECORD_END if chunk.boundary else 0

@@ -93,8 +93,8 @@ class TimedPath:
         self.local.extend(range(count))
         self.engine_ok = self.engine_ok and block.exact
         for index, chunk in enumerate(block.chunks):  # (none where the engine read the records in bulk)
-            if type(chunk) is PartChunk:
-                self.cut_until = block.starts[index] + len(chunk.data)
+            if type(chunk) is PartChunk:  # (+1 for one of no byte: the engine has not passed it at its start)
+                self.cut_until = block.starts[index] + max(len(chunk.data), 1)
         if (not self.engine_ok or self.cut_until > self.base + self.pos) and not self.python:
             self._hand_over()
         while self._python_frames() if self.python else self._engine_frames():
@@ -138,6 +138,8 @@ class TimedPath:
             self.framer.restart_at(offset, self.engine.expect)
             return
         index = self._chunk_of(offset)
+        while index > 0 and self.starts[index - 1] == offset:
+            index -= 1  # (a record captured in part of no byte at offset: fed next, below)
         chunk = self._chunk(index)
         start = self.starts[index]
         self.framer.restart_at(offset, self.engine.expect)
@@ -145,7 +147,7 @@ class TimedPath:
             self.framer.take_over(offset, self.engine.expect, start, chunk)
         if self.dissector.gaps is not None:
             self.dissector.gaps.take_over(start, chunk)
-        self.fed = index + 1
+        self.fed = index if start == offset and not chunk.data else index + 1
         self.pairer.count = self.engine.count
         # The framer looks at `offset` first with every chunk it had when it took the frame before (it
         # may have waited for more): give them before it frames anything.

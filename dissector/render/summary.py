@@ -139,6 +139,8 @@ def noise_text(length: int, offset: int) -> str:
 def noise_info(noise: Noise) -> str:
     preview = noise.raw[:NOISE_PREVIEW].hex(" ")
     more = "…" if noise.length > NOISE_PREVIEW else ""
+    if not preview:  # (a record captured in part with none of its bytes: nothing to list after a colon)
+        return noise_text(noise.length, noise.offset)
     return f"{noise_text(noise.length, noise.offset)}: {preview}{more}"
 
 

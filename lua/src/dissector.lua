@@ -56,7 +56,7 @@ local function sample_and_dissect(st, tvb, pinfo, number)
     st.sample = sample
   end
   local bytes = tvb_raw(tvb)
-  if bytes == "" then return nil end -- (as dissect_now: nothing for an empty record)
+  if bytes == "" then return dissect_now(st, tvb, pinfo, number, bytes) end -- (nothing, unless captured in part)
   sample.text = sample.text .. bytes:sub(1, MODE_REACH - #sample.text)
   -- (ended: what vw3-decode would choose were the capture to end here; one look at the bytes gives both, and
   -- the bytes of the records before are not scanned again: sample.scan)

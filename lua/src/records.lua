@@ -455,7 +455,7 @@ local function cut_part(st, bytes, time, number, part) -- (captured in part: str
   local items = feed(st, "", nil, false, true)
   local record = cut_stream(st, bytes, time, part, number, items)
   take_items(st, items, record, true)
-  return record
+  return record, pair_part(st, items[#items]) -- (numbered, it may answer the request awaited: pairing.lua)
 end
 
 dissect_record = function(st, bytes, time, number)

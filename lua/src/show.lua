@@ -443,7 +443,7 @@ end
 local function dissect_now(st, tvb, pinfo, number, bytes)
   bytes = bytes or tvb_raw(tvb)
   local n = #bytes
-  if n == 0 then return nil end
+  if n == 0 and lane.parts[number] == nil then return nil end -- (one captured in part of no byte: a cut all the same)
   local time = record_ns(pinfo, number)
   if number >= newest_record then
     newest_record = number

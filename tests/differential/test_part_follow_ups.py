@@ -118,7 +118,7 @@ def test_record_of_no_byte_captured_is_a_cut(suffix: str, tmp_path: Path, monkey
     out, _framed = engine_output_as_python([str(capture)], monkeypatch)
     assert out.splitlines() == [
         "     1     0.000000   2 request   Read Holding Registers 8401..8402 (2) [no response]  CRC ok",
-        "     2     0.010000   - noise     0 bytes of noise at offset 8:  [captured in part (0 of its 9 bytes): its CRC"
+        "     2     0.010000   - noise     0 bytes of noise at offset 8 [captured in part (0 of its 9 bytes): its CRC"
         " cannot be checked]",
         "     3     0.100000   2 request   Read Holding Registers 8401..8402 (2)  CRC ok",
         "     4     0.110000   2 response  Read Holding Registers 8401..8402 (2): 8401=3 8402=2 [#3, 10.0 ms]  CRC ok",

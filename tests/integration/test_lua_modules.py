@@ -147,7 +147,7 @@ def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytes
     """After a module's `local _ENV = M`, the generator binds as locals what it uses of the earlier modules'
     exports and of the globals (the pairing module: DATA and next; EXCEPTION, REQUEST and RESPONSE from
     layouts; awaits_answer from stream; note, release_run, say, string_of and warn from decode);
-    at its end it exports the module's top-level locals a later module names (pairing's pair, which records
+    at its end it exports the module's top-level locals a later module names (pairing's pair and pair_part, which records
     calls, and ended, which show calls; not layouts' `select`, a length rule's maker, which would hide Lua's select from the later modules),
     besides the module's own export lines; and refuses a module that assigns such a name or an export line
     that exports a name as another."""
@@ -157,7 +157,7 @@ def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytes
         "local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)",
         "local DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer",
         "local next, note, release_run, say, string_of, warn = next, note, release_run, say, string_of, warn"]
-    assert pairing.split("\nend\n\n-- ---- vw3.")[0].endswith("\nM.ended, M.pair = ended, pair")
+    assert pairing.split("\nend\n\n-- ---- vw3.")[0].endswith("\nM.ended, M.pair, M.pair_part = ended, pair, pair_part")
     assert "M.pair" not in (SRC / "pairing.lua").read_text(encoding="utf-8")
     layouts = plugin.split('package.preload["vw3.layouts"] = function(...)\n')[1].split("\nend\n\n-- ---- vw3.")[0]
     assert "local function select(" in layouts and "M.select" not in layouts and "M.possible_start" in layouts

@@ -271,10 +271,17 @@ def place_items(dicts: list[dict[str, Any]], lengths: list[int]) -> list[PythonI
     for length in lengths:
         starts.append(starts[-1] + length)
     out = []
+    empty: set[int] = set()  # (the empty records an item was placed in)
     for data in dicts:
         record = _record_of(starts, data["offset"])
         if data["kind"] != "noise":
             out.append(PythonItem(record + 1, data["offset"] - starts[record], data, data["offset"]))
+            continue
+        if not data["length"]:  # (a record captured in part of no byte: the next empty record there)
+            record = next(index for index, length in enumerate(lengths)
+                          if starts[index] == data["offset"] and not length and index not in empty)
+            empty.add(record)
+            out.append(PythonItem(record + 1, 0, data, data["offset"]))
             continue
         # A noise run of the byte stream may cross records; Wireshark shows it record by record.
         offset, end = data["offset"], data["offset"] + data["length"]
