@@ -89,6 +89,29 @@ local DATA = {
       [130] = "regular, stream and individual access",
       [131] = "extended, stream and individual access",
     },
+    ["comm_event"] = {
+      [0] = "Initiated Communication Restart",
+      [4] = "Entered Listen Only Mode",
+    },
+    ["comm_event_kind"] = {
+      [128] = "Receive Event",
+      [64] = "Send Event",
+      [0] = "Unknown Event",
+    },
+    ["comm_event_128"] = {
+      [2] = "Communication Error",
+      [16] = "Character Overrun",
+      [32] = "Currently in Listen Only Mode",
+      [64] = "Broadcast Received",
+    },
+    ["comm_event_64"] = {
+      [1] = "Read Exception Sent",
+      [2] = "Slave Abort Exception Sent",
+      [4] = "Slave Busy Exception Sent",
+      [8] = "Slave Program NAK Exception Sent",
+      [16] = "Write Timeout Error Occurred",
+      [32] = "Currently in Listen Only Mode",
+    },
   },
   ["framing"] = {
     ["max_adu"] = 256,

@@ -88,12 +88,29 @@ def _decode(frame: Frame, function: int, kind: Kind, pdu: bytes) -> Frame:
         handler = _HANDLERS_BY_KIND[kind].get(function)
         if handler is not None:
             handler(frame, fields)
+    events = fields.get("events")
+    if isinstance(events, bytes) and events:  # (FC12's log: each event named, the bytes kept as sent)
+        fields["event_list"] = [comm_event(byte) for byte in events]
     trailing = fields.get("trailing")
     if trailing:
         frame.warnings.append(text("trailing", count=len(trailing)))
     if frame.broadcast and function in SPEC.not_broadcast:
         frame.warnings.append(text("not_broadcast", function=SPEC.function_name(function)))
     return frame
+
+
+_EVENTS = SPEC.names["comm_event"]
+_EVENT_KINDS = sorted(SPEC.names["comm_event_kind"].items(), reverse=True)  # (bit, name), the highest first
+
+
+def comm_event(byte: int) -> dict[str, Any]:
+    """One FC12 event byte (Application Protocol 6.13) as data/modbus.toml [names.comm_event*] name it:
+    {"byte", "event", "flags"}; flags, the kind's bits set, named (None for an event of no kind)."""
+    for bit, name in _EVENT_KINDS:
+        if bit and byte & bit:
+            flags = SPEC.names[f"comm_event_{bit}"]
+            return {"byte": byte, "event": name, "flags": [flag for mask, flag in sorted(flags.items()) if byte & mask]}
+    return {"byte": byte, "event": _EVENTS.get(byte, _EVENT_KINDS[-1][1]), "flags": None}
 
 
 COIL_ON, COIL_OFF = 0xFF00, 0x0000

@@ -29,6 +29,11 @@ device names CHCF, as `--watch 8401` does). Once the device is chosen the histor
 again (render/history.py) and the watched states become what the device says of them, silently: the
 next line compares with that, so re-reading never makes a line of its own (p.38 read once: 16#8000
 at 8400 before and after the choice is `non-existent` both times, no change).
+
+A watched address or code the input never gave a register of is said at the end (`unseen()`, for stderr),
+with where the capture carries that address as a bit (FC1/2/5/15: coils and discrete inputs, which are
+not parameters of the history, so neither --stats nor --report count them): `--watch 172` on a capture
+that reads coil 172 printed nothing and said nothing.
 """
 from __future__ import annotations
 
@@ -41,9 +46,13 @@ from typing import Any
 from dissector.errors import UsageError
 from dissector.model import Frame, Item, Kind, Register
 from dissector.protocol.printable import printable
+from dissector.protocol.spec import SPEC
+from dissector.protocol.table import bit_windows
 from dissector.render.history import READ, UNREADABLE, UNREADABLE_STATUSES, WRITE_OBSERVED, History, wide_text
 from dissector.render.stats_store import TABLES, homes_of, origins_of, table_label
 from dissector.render.timefmt import Clock
+
+BIT_WINDOWS = bit_windows()  # codes whose windows address bits (FC1, 2, 5, 15): not registers
 
 @dataclass(frozen=True, slots=True)
 class Change:
@@ -204,6 +213,7 @@ class Watcher:
         # Addresses any profile of the run names with a watched code: followed for every slave, shown
         # when the slave's own profile gives them that code.
         self._candidates = frozenset(addresses).union(*(known.get(code, ()) for code in codes)) if known else addresses
+        self._known = {code: known[code] for code in codes if code in known} if known else {}
         # By (slave, table, address), as the history keeps parameters; in the order last set (rehomed).
         self._state: dict[tuple[int, int, int], _State] = {}  # as the history holds it (re-read)
         self._shown: dict[tuple[int, int, int], _State] = {}  # as provisional lines showed it
@@ -217,6 +227,12 @@ class Watcher:
         self._column: tuple[Frame | None, str] = (None, "-")
         # The file being read when several are one bus (render/buses.py Buses.switch): lines name it.
         self.source: str | None = None
+        # For unseen(): the watched addresses heard in a register window (whatever -Y keeps) or given a state,
+        # the watched codes given a state, and each watched address's first request for it as a bit (the
+        # request, the file it is in).
+        self._heard: set[int] = set()
+        self._coded: set[str] = set()
+        self._as_bits: dict[int, tuple[Frame, str | None]] = {}
 
     @property
     def base(self) -> float | None:
@@ -228,13 +244,56 @@ class Watcher:
 
     def observe(self, items: list[Item]) -> None:
         self.clock.observe(items)
+        self._sight(items)
 
     def add(self, item: Item) -> None:
         """An item watched (after -Y); with a shared history its owner feeds the history itself."""
         if self.owns_history:
             self.clock.observe([item])
+            self._sight([item])
             self.history.add(item)
         self.done()
+
+    def _sight(self, items: list[Item]) -> None:
+        """Where the watched addresses are in the items heard: a register window, or a request's bits."""
+        watched = self.addresses - self._heard  # (an address heard as a register needs no more)
+        if not watched:
+            return
+        for item in items:
+            if item.kind is Kind.NOISE or not item.crc_ok:  # type: ignore[union-attr]
+                continue
+            frame: Frame = item  # type: ignore[assignment]
+            start, quantity = frame.start, frame.quantity
+            if start is None:
+                continue
+            bits = frame.function in BIT_WINDOWS
+            if bits and frame.kind is not Kind.REQUEST:
+                continue
+            for address in watched:
+                if start <= address < start + (quantity or 1):
+                    if not bits:
+                        self._heard.add(address)
+                    elif address not in self._as_bits:
+                        self._as_bits[address] = (frame, self.source)
+
+    def unseen(self) -> list[str]:
+        """At the end: a line for each watched address no register of the input had, and each watched code no
+        register of the input was named with; where an address is a bit the capture carries, the first request
+        for it (--watch follows registers only)."""
+        lines = []
+        for address in sorted(self.addresses - self._heard):
+            line = f"--watch {address}: no register {address} in the capture"
+            seen = self._as_bits.get(address)
+            if seen is not None:
+                frame, source = seen
+                where = f"frame #{frame.number}" + (f" of {source}" if source is not None else "")
+                who = "every slave (broadcast)" if frame.broadcast else f"slave {frame.slave}"
+                line += (f" (bit {address}: {SPEC.function_name(frame.function)} to {who} in {where}; "
+                         "--watch follows registers only)")
+            lines.append(line)
+        lines += [f"--watch {code}: no register named {code} in the capture"
+                  for code in sorted(self.codes - self._coded)]
+        return lines
 
     def done(self) -> None:
         """The items given so far are handled: write what may be written, forget -t d's references."""
@@ -253,6 +312,7 @@ class Watcher:
         # (the slave's device's table: FC4 may read the holding registers, profiles.device_tables)
         key = (frame.slave, self.history.tables(frame.slave)[frame.function], address)  # type: ignore
         new = self._read(frame, register, event)
+        self._seen(frame.slave, address, register.label, new.function, None)
         old = self._state.pop(key, None)  # type: ignore[arg-type]
         self._state[key] = new  # type: ignore[index]
         self._part(self._origins, self._parts, key, TABLES[frame.function], old, new)  # type: ignore[arg-type]
@@ -271,11 +331,26 @@ class Watcher:
             return
         key = (frame.slave, self.history.tables(frame.slave)[frame.function], address)  # type: ignore
         new = self._read(frame, register, event, provisional=True)
+        self._seen(frame.slave, address, register.label, new.function, register.code)
+        # (shown by address where a candidate device's map names it with a watched code: that code is there)
+        self._coded.update(code for code, where in self._known.items() if address in where)
         old = self._shown.pop(key, None)  # type: ignore[arg-type]
         self._shown[key] = new  # type: ignore[index]
         self._part(self._shown_origins, self._shown_parts, key, TABLES[frame.function], old, new)  # type: ignore
         if old is not None and old.differs(new):
             self._emit(self._pending(frame, key, old, new), provisional=True)  # type: ignore[arg-type]
+
+    def _seen(self, slave: int, address: int, label: str | None, function: int, code: str | None) -> None:
+        """A state given to a watched candidate: its address (or PLC label) and code are in the input."""
+        self._heard.add(address)
+        if label is not None and label.isdigit():
+            self._heard.add(int(label))
+        if self.codes:
+            if code is None and self._device is not None:
+                row = self._device(slave).rows_for(function).get(address)
+                code = None if row is None else row.code
+            if code is not None:
+                self._coded.add(code.upper())
 
     @staticmethod
     def _part(origins: dict[tuple[int, int, int], int], parts: dict[tuple[int, int, int], _State],

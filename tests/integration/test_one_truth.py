@@ -336,7 +336,8 @@ def test_plc_style_is_the_same_in_every_output(tmp_path: Path) -> None:
     # the report: the parameter index, the trends' titles and the single-value table
     assert '<a href="#p0" title="slave 1, 40001: ">40001</a>' in text
     assert '<h3>Slave 1: <span class="code">30101</span>' in text
-    assert "<tr><td>1</td><td>40302</td><td></td><td></td><td>1</td><td>1</td></tr>" in text
+    # (the single-value table counts as --stats: reads 0, writes 3, of which 2 refused)
+    assert "<tr><td>1</td><td>40302</td><td></td><td></td><td>1</td><td>0</td><td>3</td></tr>" in text
     assert "<td>0..15 (16)</td>" not in text and "Slave 1: 0 " not in text
     # --watch: a number selects what -Y 'address == N' selects, the protocol address or the reference
     by_reference = run_cli([*plc, "--watch", "40001", sel])[1]

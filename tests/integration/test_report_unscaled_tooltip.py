@@ -57,7 +57,7 @@ def test_tooltip_says_what_the_table_says(tmp_path: Path, monkeypatch: pytest.Mo
     page = tmp_path / "ramps.html"
     assert run_cli(["--profile", "atv71", "--report", str(page), str(path)])[0] == 0
     text = page.read_text(encoding="utf-8")
-    assert "<td>DEC</td><td>Deceleration</td><td>10 (unscaled, in s)</td><td>1</td>" in text
+    assert "<td>DEC</td><td>Deceleration</td><td>10 (unscaled, in s)</td><td>0</td><td>1</td>" in text  # written once
     assert '<span class="code">ACC (9001)</span> <small>Acceleration, unscaled, in s; 2 values</small>' in text
     harness = tmp_path / "harness.js"
     harness.write_text(HARNESS)

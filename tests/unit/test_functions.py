@@ -93,6 +93,7 @@ def test_fc12_comm_event_log() -> None:
         "event_count": 264,
         "message_count": 289,
         "events": "2000",
+        "event_list": [{"byte": 0x20, "event": "Unknown Event"}, {"byte": 0, "event": "Initiated Communication Restart"}],
     }
 
 

@@ -12,7 +12,9 @@ from dissector.errors import OutputError
 from dissector.render.report.collect import EVENT_KINDS, ReportCollector
 from dissector.render.report.markup import _esc, _ms, _table
 from dissector.render.report.reading import unit_heading
-from dissector.render.report.sections import _clock, bus_section, event_groups, parameter_index, single_values
+from dissector.render.report.sections import (
+    _clock, bus_section, event_groups, parameter_index, single_counts, single_values,
+)
 from dissector.render.stats import StatsCollector, exception_counts, merged_text, time_summary
 from dissector.render.describe import count_text
 from dissector.protocol.printable import printable
@@ -240,7 +242,7 @@ def _bus_pieces(collector: ReportCollector, stats: StatsCollector, extras: dict[
     # -- parameters
     parts.append(f'<h2 id="{anchor}parameters">Parameters</h2>')
     single = single_values(collector, data)
-    parts.extend(parameter_index(data, single, anchor))
+    parts.extend(parameter_index(data, single, anchor, single_counts(stats.store, data, single)))
     exact = [series.marks for _key, series in collector.drawn_series()]  # (data's x are rounded to us)
     for index, parameter in enumerate(data["parameters"]):
         if index in single:

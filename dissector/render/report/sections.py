@@ -11,7 +11,7 @@ from typing import Any
 from dissector.render.bustiming import UNHEARD, gap_bins
 from dissector.render.outages import frames_cited
 from dissector.render.report.collect import ReportCollector
-from dissector.render.stats_store import TABLE_NAMES
+from dissector.render.stats_store import TABLE_NAMES, parameter_rows
 from dissector.render.report.markup import _details, _esc, _ms, _table, cited
 from dissector.render.pcapwriter import NANOS
 from dissector.render.timefmt import Clock
@@ -129,12 +129,30 @@ def single_values(collector: ReportCollector, data: dict[str, Any]) -> dict[int,
     return single
 
 
+def single_counts(store: Any, data: dict[str, Any], single: dict[int, str]) -> dict[int, tuple[int, int]]:
+    """The reads and writes --stats counts of each parameter with a single value (index -> (reads, writes)):
+    the table says them apart, as --stats does (a parameter only written was `readings 1`, --stats `reads 0`)."""
+    if not single:
+        return {}
+    wanted = {(data["parameters"][index]["slave"], data["parameters"][index]["address"],
+               data["parameters"][index]["table"]): index for index in single}
+    counts = {}
+    for row in parameter_rows(store):  # (slave, address, code, reads, unreadable, writes, ..., table)
+        index = wanted.get((row[0], row[1], TABLE_NAMES[row[-1]]))
+        if index is not None:
+            counts[index] = (row[3], row[5])
+    return counts
+
+
 def _number(value: float) -> str:
     return str(int(value) if value.is_integer() else value)
 
 
-def parameter_index(data: dict[str, Any], single: dict[int, str], anchor: str = "") -> list[str]:
-    """Links to every trend, named parameters first; the one-value parameters as a table."""
+def parameter_index(data: dict[str, Any], single: dict[int, str], anchor: str = "",
+                    counts: dict[int, tuple[int, int]] | None = None) -> list[str]:
+    """Links to every trend, named parameters first; the one-value parameters as a table, with the reads
+    and writes `counts` gives them (single_counts; a parameter --stats no longer keeps: `-`)."""
+    counts = counts or {}
     parameters = data["parameters"]
     if not parameters:
         return ["<p>No parameter values in this capture.</p>"]
@@ -151,10 +169,10 @@ def parameter_index(data: dict[str, Any], single: dict[int, str], anchor: str = 
     parts = ['<p class="index">' + " ".join(links) + "</p>"]
     if single:
         parts.append(f'<h3 id="{anchor}single">Parameters with a single value</h3>' + _table(
-            ["slave", "address", "code", "name", "value", "readings"],
+            ["slave", "address", "code", "name", "value", "reads", "writes"],
             [[parameters[index]["slave"], parameters[index].get("label") or parameters[index]["address"],
               parameters[index]["code"] or "",
-              parameters[index]["name"] or "", single[index], parameters[index]["values"]]
+              parameters[index]["name"] or "", single[index], *counts.get(index, ("-", "-"))]
              for index in order if index in single], "single"))
     return parts
 
