@@ -400,7 +400,8 @@ class PythonSide:
     again (noise every few frames: each hand-over costs more than the frames it saves). Any idle point
     would do for the output, since both sides decide alike; these only save calls and hand-overs."""
 
-    __slots__ = ("dissector", "framer", "write_items", "settled", "stride", "calm", "run", "damaged", "back", "noisy")
+    __slots__ = ("dissector", "framer", "write_items", "settled", "stride", "calm", "run", "damaged", "back", "noisy",
+                 "frame_noise")
 
     def __init__(self, dissector: Dissector, write_items: Callable[[list[Item]], None]) -> None:
         self.dissector = dissector
@@ -413,6 +414,10 @@ class PythonSide:
         self.damaged = False  # this stretch of the Python stages had noise or a damaged frame
         self.back = -1  # the engine's item count when it last took the stream back after damage
         self.noisy = False  # the engine's last skip_noise took bytes: the framer takes one item at a time
+        # Live (livepath.py) the line's speed bounds the noise, and -w joins a noise run to the damaged frame
+        # after it only within one batch of items (app/live_capture.py _records), which items out one at a
+        # time would part: there the framer frames noise by strides, as before the engine framed it.
+        self.frame_noise = True
 
     def take(self, count: int) -> None:
         """They take the stream from the engine, whose item count is `count`."""
@@ -444,7 +449,7 @@ class PythonSide:
         before = framer.offset
         if (self.settled or self.noisy) and framer.idle:
             framer.pause_at(before + 1)
-        elif (skipped := skip_noise(framer)) is not None and (skipped[0] or skipped[1]):
+        elif self.frame_noise and (skipped := skip_noise(framer)) is not None and (skipped[0] or skipped[1]):
             self.noisy = skipped[0] > 0 or self.noisy
             self.stride = NOISE_STRIDE  # (past the noise, again a few bytes at a time in Python)
             if skipped[1]:

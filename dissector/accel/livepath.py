@@ -102,6 +102,7 @@ class LivePath:
             if count is not None:
                 frames.cut = self._cut_engine
             clock_code = 0
+        path.side.frame_noise = False  # (fastsummary.PythonSide: live, noise by strides)
         timing = self.framer.timing
         path.engine.set_timing(timing.char_time, NO_SILENCE_CHECK, timeout, clock_code)
         self.path = path

@@ -10,7 +10,6 @@ import contextlib
 import copy
 import gc
 import io
-import json
 import os
 import sys
 from collections.abc import Callable
@@ -25,7 +24,6 @@ from dissector.app.options import PROG, DecodeOptions, build_parser, decode_opti
 from dissector.app.paths import decode_one
 from dissector.model import Frame, Item
 from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
-from dissector.render.describe import count_text
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args
 from dissector.devices.maps_refs import map_warnings
@@ -37,8 +35,9 @@ from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.app.inputs import (
-    CopyEnd, choose_over_all, choose_profiles_first, comments_of, first_interface_units, holds_ascii, input_line,
-    inputs, is_pcapng_file, item_pieces, keep_interface, observe_records, profile_notes, several_captures,
+    CopyEnd, choose_over_all, choose_profiles_first, comments_of, first_interface_units, input_line,
+    inputs, is_pcapng_file, item_pieces, keep_interface, no_frame_warning, observe_records, profile_notes,
+    several_captures,
     tell_comments, write_interface, write_units,
 )
 from dissector.sources.reader import SourceError
@@ -355,6 +354,8 @@ class Sinks:
         for bus in buses:
             if bus.watch is not None:
                 bus.watch.finish()
+                for line in bus.watch.unseen():  # (a watched address or code the input never had)
+                    self.env.stderr.write(f"{PROG}: {shown(line)}\n")
         if self.report is not None:
             from dissector.render.buses import write_report_page
 
@@ -447,21 +448,8 @@ def _decode_inputs(
                     and not sinks.done):
                 # A PNG, a line read at the wrong speed: say so once, not only as noise and damage
                 # (--hex bytes typed from a manual have their own notes: a CRC typo is spelled out).
-                name = path if path != "-" else "standard input"
-                if framer.cut_bytes == sinks.input_bytes:  # (every record captured in part: no other format)
-                    env.stderr.write(
-                        f"{PROG}: warning: {shown(name)}: no frame can be checked: every record was captured in part "
-                        f"({count_text(framer.cut_records, 'record')}, {count_text(framer.cut_bytes, 'byte')}: a "
-                        f"snapshot length shorter than the frames), their {'LRC' if mode == 'ascii' else 'CRC'}s cut "
-                        "off: capture again with a larger snapshot length\n")
-                else:
-                    hint = (" (it holds Modbus ASCII frames: try --mode ascii)"
-                            if mode == "rtu" and holds_ascii(path) else "")
-                    env.stderr.write(
-                        f"{PROG}: warning: {shown(name)}: no valid Modbus {mode.upper()} frame in {sinks.input_bytes} "
-                        "bytes (every item is noise or a frame with a bad check): not a Modbus capture, or another "
-                        f"format or line speed?{hint}\n"
-                    )
+                env.stderr.write(no_frame_warning(path, mode, sinks.input_bytes, framer.cut_records,
+                                                  framer.cut_bytes))
     except BaseException as error:
         sinks.abandon(isinstance(error, SourceError))
         raise

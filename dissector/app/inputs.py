@@ -17,7 +17,8 @@ from dissector.app.profile_options import report_profiles
 from dissector.app.rings import RingSource, group_files
 from dissector.framing.linespeed import FROM_PCAPNG, LineSettings, line_settings, settings_from_text
 from dissector.model import Chunk, Item, stamped_before
-from dissector.render.capturefile import CaptureOutput, Interface, pcapng_interface
+from dissector.render.capturefile import CaptureOutput
+from dissector.render.pcapnghead import Interface, pcapng_interface
 from dissector.render.pcapngwriter import resolution_text, tsresol
 from dissector.render.pcapwriter import MICROS, NANOS, finer_than_micros
 from dissector.sources.interfaces import PacketInterface, open_interface, packet_interfaces
@@ -419,6 +420,22 @@ def choose_profiles_first(annotate: Any, args: DecodeOptions, chunks: Iterable[C
             choose_profiles(annotate, reread, mode, baud, args.timeout)  # type: ignore[arg-type]
     else:
         annotate.thaw()  # type: ignore[union-attr]
+
+
+def no_frame_warning(path: str, mode: str, input_bytes: int, cut_records: int, cut_bytes: int) -> str:
+    """The warning for an input with no valid frame: every record captured in part (a snapshot length), else
+    not Modbus or another format or line speed (a PNG, a line read at the wrong speed)."""
+    from dissector.render.describe import count_text
+
+    name = shown(path if path != "-" else "standard input")
+    if cut_bytes == input_bytes:  # (every record captured in part: no other format)
+        return (f"{PROG}: warning: {name}: no frame can be checked: every record was captured in part "
+                f"({count_text(cut_records, 'record')}, {count_text(cut_bytes, 'byte')}: a snapshot length "
+                f"shorter than the frames), their {'LRC' if mode == 'ascii' else 'CRC'}s cut off: capture again "
+                "with a larger snapshot length\n")
+    hint = " (it holds Modbus ASCII frames: try --mode ascii)" if mode == "rtu" and holds_ascii(path) else ""
+    return (f"{PROG}: warning: {name}: no valid Modbus {mode.upper()} frame in {input_bytes} bytes (every item "
+            f"is noise or a frame with a bad check): not a Modbus capture, or another format or line speed?{hint}\n")
 
 
 ASCII_HINT_BYTES = 1 << 16  # how much of a file the --mode ascii hint reads again (once, after the run)

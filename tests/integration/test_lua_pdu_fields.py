@@ -55,7 +55,9 @@ TREES: list[tuple[str, list[str]]] = [
     ("VW3 Modbus RTU, 1 Get Comm Event Log request", []),
     ("VW3 Modbus RTU, 1 Get Comm Event Log response status 0x0000, 264 events, 289 messages", [
         "    Byte count: 8", "    Status: 0 (0x0000)", "    Event count: 264", "    Message count: 289",
-        "    Events: 2000"]),
+        "    Events: 2000", "    Event list (2)", "        [0]", "            Byte: 32 (0x20)",
+        "            Event: Unknown Event", "        [1]", "            Byte: 0 (0x0)",
+        "            Event: Initiated Communication Restart"]),
     ("VW3 Modbus RTU, 1 Report Server ID request", []),
     ("VW3 Modbus RTU, 1 Report Server ID response server id 1, run ON, 'ABCD'", [
         "    Byte count: 6", "    Server id: 1 (0x01)", "    Run indicator: ON (0xff)", "    Additional data: ABCD"]),
