@@ -5156,7 +5156,7 @@ local function part_fields(s, bytes)
   return "; " .. table.concat(fields, ", ")
 end
 
--- A record captured in part, its bytes after the stream's (records.lua cut_part closed it): its item added to
+-- A record captured in part, its bytes after the stream's (lua/src/records.lua cut_part closed it): its item added to
 -- `items`, whose reason says so (stream.py CAPTURED_IN_PART: no CRC or LRC can be checked on a frame cut short),
 -- and its record table opened (take_items closes it); the stream then starts clean after it, as stream.py
 -- restart_at leaves it: nothing buffered or awaited, the record's end a boundary and its time the last kept.
@@ -5220,7 +5220,7 @@ local function ends_record(s, b, i, n)
     -- (a rule's length is its bytes' alone but for NEED and the FC43 object walk's: the walk's length, NEED or
     -- at n or past it, says that more bytes may change it)
     if length == NEED or walk == NEED or walk ~= nil and i + walk >= n then settled = false end
-    if is_scan then -- (rtu.py _ends_record: the record's length, from the scan's minimum on)
+    if is_scan then -- (reach.py _ends_record: the record's length, from the scan's minimum on)
       local stop = first_after(s, s.boundaries, i, n) -- (the first record end after i)
       if stop == nil then settled = false end
       length = stop ~= nil and stop - i >= length and stop - i or 0
@@ -5239,7 +5239,7 @@ end
 -- ahead, some 87 of them).
 local ends_memo, ends_known = {}, 0
 
--- Where a CRC scan from i stops (rtu.py _framed_reach): the first record after i that is a frame of its own, else
+-- Where a CRC scan from i stops (reach.py _framed_reach): the first record after i that is a frame of its own, else
 -- n. A scan across it read noise and that frame as one frame, and waited for bytes past it in one pass.
 local function framed_reach(s, b, i, n)
   local base, ends = s.base, s.boundaries
@@ -5262,7 +5262,7 @@ local function framed_reach(s, b, i, n)
 end
 
 -- Would a reading at i of `length` bytes (NEED: more than there are) swallow a record that is a frame of its own,
--- the first after i (framed_reach) starting inside it (rtu.py _crosses_framed_record)? Then it is none, its bytes
+-- the first after i (framed_reach) starting inside it (reach.py _crosses_framed_record)? Then it is none, its bytes
 -- come or not: waiting for them (a long answer read from noise, an FC23 request's byte count) held every later
 -- record in one pass.
 local function crosses_framed_record(s, b, i, length, n)
@@ -6968,10 +6968,8 @@ local function parse_profile_choice(text)
       problem = format("%q: auto is for every slave (a default, not SLAVE=auto)", part)
     elseif PROFILES[name] == nil then
       problem = format("profile %q for slave %d is not built in", name, slave)
-    elseif slave == 0 then -- (the broadcast address: app/profile_options.py check_slaves)
-      problem = format("%q: slave 0 is the broadcast address, which no device has (a slave is 1..%d)", part, MAX_SLAVE)
-    elseif slave > MAX_SLAVE then
-      problem = format("slave %d is outside 1..%d", slave, MAX_SLAVE)
+    elseif slave > MAX_SLAVE then -- (unit 0 is a device's address over Modbus/TCP, which the plugin reads too)
+      problem = format("slave %d is outside 0..%d", slave, MAX_SLAVE)
     elseif per_slave[slave] ~= nil then
       problem = format("%q: slave %d already has a profile", part, slave)
     else
@@ -7351,10 +7349,8 @@ local function parse_map_choice(text, profile_names)
       -- (nothing between two `;`)
     elseif target and not slave and not profile_names[target] then
       errors[#errors + 1] = format("map %q: %q is neither a slave address nor a profile in use", spec, target)
-    elseif slave == 0 or (slave and slave > MAX_SLAVE) then -- (no device has it: as --map 0=FILE)
-      errors[#errors + 1] = slave == 0
-        and format("map %q: slave 0 is the broadcast address, which no device has (a slave is 1..%d)", spec, MAX_SLAVE)
-        or format("map %q: slave %d is outside 1..%d", spec, slave, MAX_SLAVE)
+    elseif slave and slave > MAX_SLAVE then -- (unit 0 is a device's over Modbus/TCP: profiles' rule)
+      errors[#errors + 1] = format("map %q: slave %d is outside 0..%d", spec, slave, MAX_SLAVE)
     else
       local rows, problem = attempt(load_map, path)
       if rows == nil then
@@ -9408,11 +9404,11 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
   return record, f.info
 end
 
-local function cut_part(st, bytes, time, number, part) -- (captured in part: stream.lua cut_stream, after a final run)
+local function cut_part(st, bytes, time, number, part) -- (captured in part: lua/src/stream.lua cut_stream, after a final run)
   local items = feed(st, "", nil, false, true)
   local record = cut_stream(st, bytes, time, part, number, items)
   take_items(st, items, record, true)
-  return record, pair_part(st, items[#items]) -- (numbered, it may answer the request awaited: pairing.lua)
+  return record, pair_part(st, items[#items]) -- (numbered, it may answer the request awaited: lua/src/pairing.lua)
 end
 
 dissect_record = function(st, bytes, time, number)
@@ -9662,7 +9658,7 @@ function proto.init()
   -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
   -- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
   rtac_times = {}
-  lane.parts = {} -- (records captured in part, by number: stream.lua lane.captured_in_part)
+  lane.parts = {} -- (records captured in part, by number: lua/src/stream.lua lane.captured_in_part)
   apply_prefs()
   -- Streams of records: the serial capture's (state); the others (one per UDP conversation, one per TCP
   -- connection, one per further interface: dissector.lua) in udp_states, which the first pass's end finishes.
@@ -10664,7 +10660,7 @@ local function show_item(st, item, shown_from, tree, pinfo, full, summaries, inf
     -- (a run of the same noise, kept as one entry: its texts made once, for each of its items)
     local bytes = count_text(item.length, "byte")
     local text = format("noise (%s)", bytes) .. (from or "")
-    -- (a record captured in part, stream.lua cut_stream: marked as tshark marks it, `[Packet size limited during
+    -- (a record captured in part, lua/src/stream.lua cut_stream: marked as tshark marks it, `[Packet size limited during
     -- capture]`, and as vw3-decode's summary line, render/summary.py part_mark)
     if item.reason:sub(1, 16) == "captured in part" then text = text .. " [" .. item.reason .. "]" end
     local expert_text = format("%s outside any frame: %s", bytes, item.reason)
@@ -10943,7 +10939,7 @@ local function dissect_records(st, tvb, pinfo, tree)
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
     if number <= 2 then epoch_first(st, tvb, pinfo, number) end
     -- A record captured in part (a snapshot length shorter than it: tshark's `[Packet size limited during
-    -- capture]`) is a cut: records.lua cut_part.
+    -- capture]`) is a cut: lua/src/records.lua cut_part.
     local captured, original = tvb:len(), tvb:reported_len()
     if original > captured then lane.captured_in_part(number, captured, original) end
     -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)

@@ -67,7 +67,7 @@ static int nz_kind(int function, int awaited, int r) {
     return (r == 0) == !!awaited ? KIND_RESPONSE : KIND_REQUEST;
 }
 
-/* RtuFramer._ends_record: a layout at j checks out and ends at a record's end (a scanned one: that end). */
+/* RecordEnds._ends_record: a layout at j checks out and ends at a record's end (a scanned one: that end). */
 static int nz_ends_record(const NoiseLine *L, Py_ssize_t j, Py_ssize_t n) {
     const LengthRule *rules[3];
     int count = layouts(L->b[j + 1], nz_awaited(L, j), rules);
@@ -84,7 +84,7 @@ static int nz_ends_record(const NoiseLine *L, Py_ssize_t j, Py_ssize_t n) {
     return 0;
 }
 
-/* RtuFramer._framed_reach: where a CRC scan from i stops, the first record end after i that is a frame of its
+/* RecordEnds._framed_reach: where a CRC scan from i stops, the first record end after i that is a frame of its
  * own (within MAX_ADU), else n. */
 static Py_ssize_t nz_reach(const NoiseLine *L, Py_ssize_t i, Py_ssize_t n) {
     Py_ssize_t high = n - MIN_ADU + 1 < i + MAX_ADU ? n - MIN_ADU + 1 : i + MAX_ADU;
@@ -95,7 +95,7 @@ static Py_ssize_t nz_reach(const NoiseLine *L, Py_ssize_t i, Py_ssize_t n) {
     return n;
 }
 
-/* RtuFramer._crosses_framed_record (length NZ_NEED: more than there are). */
+/* RecordEnds._crosses_framed_record (length NZ_NEED: more than there are). */
 static int nz_crosses(const NoiseLine *L, Py_ssize_t i, Py_ssize_t length, Py_ssize_t n) {
     if (!L->end_count) return 0;
     Py_ssize_t reach = nz_reach(L, i, n);

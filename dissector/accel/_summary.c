@@ -551,7 +551,7 @@ static int rule_check(const LengthRule *rule, const uint8_t *b, Py_ssize_t i, Py
 
 static Py_ssize_t framed_reach(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n); /* (below) */
 
-/* RtuFramer._crosses_framed_record: a reading at i of `length` bytes (-1: more than there are) would swallow a
+/* RecordEnds._crosses_framed_record: a reading at i of `length` bytes (-1: more than there are) would swallow a
  * record that is a frame of its own, the first one after i (framed_reach) starting inside it: it is none. */
 static int crosses_framed_record(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t length, Py_ssize_t n) {
     Py_ssize_t reach = framed_reach(e, b, i, n);
@@ -590,7 +590,7 @@ static Py_ssize_t record_end(Timeline *t, Py_ssize_t j, Py_ssize_t n) {
     return -1;
 }
 
-/* RtuFramer._ends_record: a layout at j (valid_frame_at's) checks out and ends where a record does, or a silence
+/* RecordEnds._ends_record: a layout at j (valid_frame_at's) checks out and ends where a record does, or a silence
  * begins (a code without a length rule: its CRC checks there). */
 static int ends_record(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize_t n) {
     Timeline *t = (Timeline *)&e->tl; /* (its cursor only moves) */
@@ -609,7 +609,7 @@ static int ends_record(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize
     return 0;
 }
 
-/* RtuFramer._framed_reach: where a CRC scan from i stops, the first record after i (a chunk's end that is a
+/* RecordEnds._framed_reach: where a CRC scan from i stops, the first record after i (a chunk's end that is a
  * boundary) that is a frame of its own, else n; n on an untimed stream (no records). */
 static Py_ssize_t framed_reach(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n) {
     Timeline *t = (Timeline *)&e->tl;

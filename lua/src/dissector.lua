@@ -86,7 +86,7 @@ local function dissect_records(st, tvb, pinfo, tree)
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
     if number <= 2 then epoch_first(st, tvb, pinfo, number) end
     -- A record captured in part (a snapshot length shorter than it: tshark's `[Packet size limited during
-    -- capture]`) is a cut: records.lua cut_part.
+    -- capture]`) is a cut: lua/src/records.lua cut_part.
     local captured, original = tvb:len(), tvb:reported_len()
     if original > captured then lane.captured_in_part(number, captured, original) end
     -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)

@@ -41,10 +41,8 @@ local function parse_profile_choice(text)
       problem = format("%q: auto is for every slave (a default, not SLAVE=auto)", part)
     elseif PROFILES[name] == nil then
       problem = format("profile %q for slave %d is not built in", name, slave)
-    elseif slave == 0 then -- (the broadcast address: app/profile_options.py check_slaves)
-      problem = format("%q: slave 0 is the broadcast address, which no device has (a slave is 1..%d)", part, MAX_SLAVE)
-    elseif slave > MAX_SLAVE then
-      problem = format("slave %d is outside 1..%d", slave, MAX_SLAVE)
+    elseif slave > MAX_SLAVE then -- (unit 0 is a device's address over Modbus/TCP, which the plugin reads too)
+      problem = format("slave %d is outside 0..%d", slave, MAX_SLAVE)
     elseif per_slave[slave] ~= nil then
       problem = format("%q: slave %d already has a profile", part, slave)
     else
@@ -424,10 +422,8 @@ local function parse_map_choice(text, profile_names)
       -- (nothing between two `;`)
     elseif target and not slave and not profile_names[target] then
       errors[#errors + 1] = format("map %q: %q is neither a slave address nor a profile in use", spec, target)
-    elseif slave == 0 or (slave and slave > MAX_SLAVE) then -- (no device has it: as --map 0=FILE)
-      errors[#errors + 1] = slave == 0
-        and format("map %q: slave 0 is the broadcast address, which no device has (a slave is 1..%d)", spec, MAX_SLAVE)
-        or format("map %q: slave %d is outside 1..%d", spec, slave, MAX_SLAVE)
+    elseif slave and slave > MAX_SLAVE then -- (unit 0 is a device's over Modbus/TCP: profiles' rule)
+      errors[#errors + 1] = format("map %q: slave %d is outside 0..%d", spec, slave, MAX_SLAVE)
     else
       local rows, problem = attempt(load_map, path)
       if rows == nil then

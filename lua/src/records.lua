@@ -451,11 +451,11 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
   return record, f.info
 end
 
-local function cut_part(st, bytes, time, number, part) -- (captured in part: stream.lua cut_stream, after a final run)
+local function cut_part(st, bytes, time, number, part) -- (captured in part: lua/src/stream.lua cut_stream, after a final run)
   local items = feed(st, "", nil, false, true)
   local record = cut_stream(st, bytes, time, part, number, items)
   take_items(st, items, record, true)
-  return record, pair_part(st, items[#items]) -- (numbered, it may answer the request awaited: pairing.lua)
+  return record, pair_part(st, items[#items]) -- (numbered, it may answer the request awaited: lua/src/pairing.lua)
 end
 
 dissect_record = function(st, bytes, time, number)

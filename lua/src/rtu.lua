@@ -21,7 +21,7 @@ local function ends_record(s, b, i, n)
     -- (a rule's length is its bytes' alone but for NEED and the FC43 object walk's: the walk's length, NEED or
     -- at n or past it, says that more bytes may change it)
     if length == NEED or walk == NEED or walk ~= nil and i + walk >= n then settled = false end
-    if is_scan then -- (rtu.py _ends_record: the record's length, from the scan's minimum on)
+    if is_scan then -- (reach.py _ends_record: the record's length, from the scan's minimum on)
       local stop = first_after(s, s.boundaries, i, n) -- (the first record end after i)
       if stop == nil then settled = false end
       length = stop ~= nil and stop - i >= length and stop - i or 0
@@ -40,7 +40,7 @@ end
 -- ahead, some 87 of them).
 local ends_memo, ends_known = {}, 0
 
--- Where a CRC scan from i stops (rtu.py _framed_reach): the first record after i that is a frame of its own, else
+-- Where a CRC scan from i stops (reach.py _framed_reach): the first record after i that is a frame of its own, else
 -- n. A scan across it read noise and that frame as one frame, and waited for bytes past it in one pass.
 local function framed_reach(s, b, i, n)
   local base, ends = s.base, s.boundaries
@@ -63,7 +63,7 @@ local function framed_reach(s, b, i, n)
 end
 
 -- Would a reading at i of `length` bytes (NEED: more than there are) swallow a record that is a frame of its own,
--- the first after i (framed_reach) starting inside it (rtu.py _crosses_framed_record)? Then it is none, its bytes
+-- the first after i (framed_reach) starting inside it (reach.py _crosses_framed_record)? Then it is none, its bytes
 -- come or not: waiting for them (a long answer read from noise, an FC23 request's byte count) held every later
 -- record in one pass.
 local function crosses_framed_record(s, b, i, length, n)

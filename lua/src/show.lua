@@ -288,7 +288,7 @@ local function show_item(st, item, shown_from, tree, pinfo, full, summaries, inf
     -- (a run of the same noise, kept as one entry: its texts made once, for each of its items)
     local bytes = count_text(item.length, "byte")
     local text = format("noise (%s)", bytes) .. (from or "")
-    -- (a record captured in part, stream.lua cut_stream: marked as tshark marks it, `[Packet size limited during
+    -- (a record captured in part, lua/src/stream.lua cut_stream: marked as tshark marks it, `[Packet size limited during
     -- capture]`, and as vw3-decode's summary line, render/summary.py part_mark)
     if item.reason:sub(1, 16) == "captured in part" then text = text .. " [" .. item.reason .. "]" end
     local expert_text = format("%s outside any frame: %s", bytes, item.reason)

@@ -409,7 +409,7 @@ local function part_fields(s, bytes)
   return "; " .. table.concat(fields, ", ")
 end
 
--- A record captured in part, its bytes after the stream's (records.lua cut_part closed it): its item added to
+-- A record captured in part, its bytes after the stream's (lua/src/records.lua cut_part closed it): its item added to
 -- `items`, whose reason says so (stream.py CAPTURED_IN_PART: no CRC or LRC can be checked on a frame cut short),
 -- and its record table opened (take_items closes it); the stream then starts clean after it, as stream.py
 -- restart_at leaves it: nothing buffered or awaited, the record's end a boundary and its time the last kept.

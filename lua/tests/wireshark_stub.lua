@@ -116,6 +116,13 @@ local function new_item(field, range, value)
 end
 
 function TreeItem:add(field, range, value, ...)
+  if type(field) == "table" and field.kind == "range" then  -- (a text item on a range, as wslua's add allows)
+    assert(type(range) == "string", "stub: a text item's label must be a string")
+    local child = new_item(nil, field, nil)
+    child.text = range
+    self.children[#self.children + 1] = child
+    return child
+  end
   assert(type(field) == "table" and (field.kind == "field" or field.kind == "proto"), "stub: add() needs a field or proto")
   assert(range == nil or (type(range) == "table" and range.kind == "range"), "stub: the second argument must be a TvbRange")
   if field.kind == "field" and field.ftype ~= "none" and field.ftype ~= "bytes" then
@@ -149,6 +156,8 @@ function stub.dump(item, depth, out)
     if child.hidden then -- (not shown, as tshark -V does not show it)
     elseif child.expert then
       out[#out + 1] = pad .. "expert:" .. child.expert .. "=" .. tostring(child.text)
+    elseif child.field == nil then
+      out[#out + 1] = pad .. tostring(child.text)
     elseif child.field.kind == "proto" then
       out[#out + 1] = pad .. child.field.name .. ": " .. tostring(child.text)
     else

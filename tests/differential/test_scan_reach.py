@@ -1,4 +1,4 @@
-"""A CRC scan does not reach across a record that is a frame of its own (framing/rtu.py _framed_reach; the
+"""A CRC scan does not reach across a record that is a frame of its own (framing/reach.py _framed_reach; the
 engine's framed_reach in _summary.c): the engine and the Python stages (VW3_PURE_PYTHON=1) show the same lines,
 exactly. A damaged FC8/00 Return Query Data (a CRC scan, which the engine frames itself in step) whose CRC over it
 and the next record, an intact request, checks by chance was read as one 16-byte frame: 'Return Query Data data

@@ -1,5 +1,5 @@
 """A reading whose bytes have not all come is not waited for across a record that is a frame of its own (framing/
-rtu.py _crosses_framed_record, in _valid_frame_at and _match; the engine's crosses_framed_record in _summary.c,
+reach.py _crosses_framed_record, in _valid_frame_at and _match; the engine's crosses_framed_record in _summary.c,
 valid_frame_at and _timedframe.h decide_at): the engine and the Python stages (VW3_PURE_PYTHON=1) show the same
 lines, exactly. In step, the answer awaited whose byte count reads 17 bytes, cut by a request's record and
 completed by the record after it with a CRC that checks over the three: the Python stages do not wait for it

@@ -1,5 +1,5 @@
 """tshark's single pass (no -2) where a reading waits for bytes past a record that is a frame of its own
-(framing/rtu.py _crosses_framed_record, lua/src/rtu.lua crosses_framed_record): 'ff ff 01 b0' before a request
+(framing/reach.py _crosses_framed_record, lua/src/rtu.lua crosses_framed_record): 'ff ff 01 b0' before a request
 in one record read 'ff 01' as slave 255 FC1 whose answer would be 181 bytes, and the request cut short by the
 next record ('01 03 00 00 00', a repeated request's first bytes) as a request of 8 bytes: that record and every
 later one showed '(N bytes continue)' to the end of the capture. (Noise and frames a later record settles: shown in

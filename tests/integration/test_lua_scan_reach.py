@@ -1,5 +1,5 @@
 """The plugin's CRC scan does not reach across a record that is a frame of its own (lua/src/rtu.lua framed_reach,
-framing/rtu.py _framed_reach), in tshark's single pass and with -2: a record whose first bytes read as a code
+framing/reach.py _framed_reach), in tshark's single pass and with -2: a record whose first bytes read as a code
 without a length rule (slave 41's user-defined function 70; an FC8/00 Return Query Data), then a request right
 after it whose CRC over both records checks by chance, was read as one frame ('41 User-defined function 70
 request', the request lost). Exact Info, and every field as vw3-decode says it (reading once; reading twice)."""

@@ -1,5 +1,5 @@
 """tshark's single pass (no -2) where a reading inside "does an intact frame start here" waits for bytes past a
-record that is a frame of its own (framing/rtu.py _crosses_framed_record, in _valid_frame_at as in _match;
+record that is a frame of its own (framing/reach.py _crosses_framed_record, in _valid_frame_at as in _match;
 lua/src/rtu.lua valid_frame_at): a damaged request then '0c 01 be 11' in one record (slave 12's FC1, an answer of 195
 bytes) held that record and every later one, each '(N bytes continue)', until 195 bytes had come; so did an FC23
 request's start whose byte count had not come. The next record, a frame, settles it: a record that is itself a

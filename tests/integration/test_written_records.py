@@ -51,7 +51,7 @@ TAIL_LINES = [
 # damaged_stream(3051): a noise run whose first bytes read as slave 41's user-defined function 70 (a CRC scan, no
 # length rule), then an intact FC43 request. Written as two records, the scan from the noise record's start
 # checked 85 bytes by chance, across the request's record: read back as 'User-defined function 70 81 bytes of
-# data'. A CRC scan stops at a record that is a frame of its own (framing/rtu.py _framed_reach).
+# data'. A CRC scan stops at a record that is a frame of its own (framing/reach.py _framed_reach).
 SCANNED = [
     "    16            -   - noise     78 bytes of noise at offset 697: "
     "29 46 3c 0d aa 3b e5 7f 07 98 93 c7 7e 4c b5 b1…",

@@ -1,4 +1,4 @@
-"""FC12 (Get Comm Event Log): each event byte is named in -V and --json (fields.event_list), as Wireshark's
+"""FC12 (Get Comm Event Log): each event byte is named in -V and --json (the NDJSON key fields -> event_list), as Wireshark's
 modbus dissector names them (Application Protocol 6.13; names from data/modbus.toml [names.comm_event*]): a
 receive event (bit 7) or a send event (bit 6) with the bits it sets, 0x04 entered listen only mode, 0x00
 communication restart, any other byte unknown. Before, the events were their bytes' hex only

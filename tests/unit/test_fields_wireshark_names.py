@@ -1,6 +1,6 @@
 """-T fields -e with the field names a Wireshark user types (`tshark -T fields -e frame.number -e
 frame.time_relative`, the plugin's `vw3.slave`, mbrtu's `mbrtu.unit_id`): -Y's error names vw3-decode's field
-for them (test_wireshark_field_names), -e said "only fields.KEY names a key inside a value" or "not a field
+for them (test_wireshark_field_names), -e said "only fields.<key> names a key inside a value" or "not a field
 (see the NDJSON keys in the README)" and left the user to find it (hunt64)."""
 from __future__ import annotations
 

@@ -85,7 +85,7 @@ def fed(framer_type: type, baud: int, char_time: float, reads: list[tuple[bytes,
         assert items == [said_of(item) for chunk in runs_clock.chunks(data, stamp) for item in runs.feed(chunk)]
         said.append(items)
         # (either may have decided further: the whole read by the times of its bytes, the runs by their ends,
-        # which bound a CRC scan as a record's do, rtu.py _framed_reach; the items are the same)
+        # which bound a CRC scan as a record's do, reach.py _framed_reach; the items are the same)
         if whole.offset == runs.offset:
             assert (whole.held_since and whole.held_since.ns) == (runs.held_since and runs.held_since.ns)
             assert whole._boundaries == runs._boundaries  # the silences weighed (evidence of a frame's end)

@@ -1,4 +1,4 @@
-"""A record's end settles what waits for bytes past it (framing/rtu.py _ends_record, _scan, _match's damaged
+"""A record's end settles what waits for bytes past it (framing/reach.py _ends_record; framing/rtu.py _scan, _match's damaged
 frames): fed record by record, the framer gives each record's frame with that record, as the plugin's single
 pass shows it (tests/integration/test_lua_one_pass_records.py, test_lua_one_pass_bad_crc.py), after a
 broadcast request (00: a glitch byte before a 'slave 6, FC12' answer of 134 bytes?), an exception from slave 0

@@ -1,4 +1,4 @@
-"""A CRC scan does not reach across a record that is a frame of its own (framing/rtu.py _framed_reach): fed record
+"""A CRC scan does not reach across a record that is a frame of its own (framing/reach.py _framed_reach): fed record
 by record (the plugin's single pass, live capture), each record's frames come with it or the next record, not at
 finish(). '29 46' after a request in its record (slave 41's user-defined function 70: no length rule, a CRC scan)
 waited for up to MAX_ADU bytes for a CRC match, past the records after it that are frames: every later record

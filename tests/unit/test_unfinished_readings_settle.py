@@ -1,5 +1,5 @@
 """A reading whose bytes have not all come is not waited for when they would swallow a record that is a frame of
-its own (framing/rtu.py _crosses_framed_record), in "does an intact frame start here" (_valid_frame_at: what follows
+its own (framing/reach.py _crosses_framed_record), in "does an intact frame start here" (_valid_frame_at: what follows
 a damaged frame, a glitch byte, a scanned frame) as in the framer's own readings (_match). Fed record by record (the
 plugin's single pass, live capture), a damaged request then '0c 01 be 11' in one record (slave 12's FC1: a request
 of 8 bytes, an answer of 5 + 0xbe = 195) held every later record until 195 bytes had come, past records that are

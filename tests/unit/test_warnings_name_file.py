@@ -25,7 +25,13 @@ def test_each_file_named_in_its_record_warnings(tmp_path: Path) -> None:
     assert status == 0
     assert [line for line in err.splitlines() if "captured" in line] == [
         f"vw3-decode: warning: {first}: record 1: only 5 of its 8 bytes were captured",
+        f"vw3-decode: warning: {first}: no frame can be checked: every record was captured in part (1 record, "
+        "5 bytes: a snapshot length shorter than the frames), their CRCs cut off: capture again with a larger "
+        "snapshot length",
         f"vw3-decode: warning: {second}: record 1: only 6 of its 8 bytes were captured",
+        f"vw3-decode: warning: {second}: no frame can be checked: every record was captured in part (1 record, "
+        "6 bytes: a snapshot length shorter than the frames), their CRCs cut off: capture again with a larger "
+        "snapshot length",
     ]
 
 
