@@ -343,6 +343,18 @@ class Frame:
         return self.time - self.request.time
 
 
+@dataclass(slots=True)
+class CapturedPart:
+    """A record captured in part (a snapshot length shorter than the frame: framing/stream.py _cut_part): what
+    its bytes tell, which -w, --stats, the pairing and the summary read (its item's reason says it in words)."""
+    captured: int
+    original: int  # its length on the line
+    check: str  # "CRC" or "LRC": the check its bytes cannot pass
+    slave: int | None = None  # None: not captured
+    function: int | None = None
+    answers: int | None = None  # the request it answers (decode/pairing.py)
+
+
 @dataclass(slots=True, eq=False)
 class Noise:
     offset: int
@@ -352,6 +364,7 @@ class Noise:
     reason: str = "no valid frame"
     kind: Kind = Kind.NOISE
     warnings: list[str] = field(default_factory=list)
+    part: CapturedPart | None = None  # a record captured in part, not line noise
 
     @property
     def length(self) -> int:

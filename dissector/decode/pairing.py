@@ -51,7 +51,7 @@ from __future__ import annotations
 
 import weakref
 
-from dissector.framing.stream import part_answering, part_fields
+from dissector.framing.stream import part_reason
 from dissector.model import CUT_ANSWER, Frame, Item, Kind, Noise, stamped_before
 from dissector.protocol import table
 from dissector.protocol.rules import awaits_answer, echoed, text
@@ -333,10 +333,10 @@ class Pairer:
         names the request. Before, the request was unanswered: an engineer was told the slave did not answer."""
         pending = self._pending
         assert pending is not None
-        fields = part_fields(noise.reason)
-        if fields is None or self._late(pending, noise.time):
+        part = noise.part
+        if part is None or part.slave is None or self._late(pending, noise.time):
             return
-        slave, function = fields
+        slave, function = part.slave, part.function
         if slave != pending.slave or (function is not None and function & 0x7F != pending.function):
             return
         queue = self._queue  # (items are numbered as they are released, in order: pending may still be held)
@@ -345,7 +345,8 @@ class Pairer:
             asked = self._count + 1 + next(index for index, queued in enumerate(queue) if queued is pending)
         else:
             asked = pending.number
-        noise.reason = part_answering(noise.reason, asked)
+        part.answers = asked
+        noise.reason = part_reason(part)
         self._pending = None
         # (the framer starts clean after the cut: it awaits nothing, as the pairer now)
         self._retried = self._echoed = self._expired = None

@@ -51,16 +51,16 @@ class AsciiFramer(Awaiting, StreamFramer):
         self._delimiters: dict[int, int] = {}  # slave -> the character 08/03 set in place of LF
         self._line_ends = b""  # those characters: each ends a line after a CR
 
-    def _part_fields(self, data: bytes) -> str:
+    def _part_fields(self, data: bytes) -> tuple[int | None, int | None]:
         """What the characters of a frame cut short tell (StreamFramer._cut_part): after its colon, the slave's
-        two hex digits, then the function's (`; slave 2, function 3`)."""
-        fields = []
-        for name, at in (("slave", 1), ("function", 3)):
+        two hex digits, then the function's; None where not captured."""
+        fields: list[int | None] = [None, None]
+        for index, at in enumerate((1, 3)):
             digits = data[at : at + 2]
             if data[:1] != b":" or len(digits) < 2 or not all(digit in _HEX_DIGITS for digit in digits):
                 break
-            fields.append(f"{name} {int(digits, 16)}")
-        return "; " + ", ".join(fields) if fields else ""
+            fields[index] = int(digits, 16)
+        return fields[0], fields[1]
 
     def _run(self, final: bool) -> list[Item]:
         buf = self._buf

@@ -7,13 +7,12 @@ time would be, fed one by one (live capture fed those from 4173324 to 09ae941, a
 its own: 5 times the work, bench/live_feed.py)."""
 from __future__ import annotations
 
-import re
 from abc import ABC, abstractmethod
 
 from dissector.framing.answers import answer_length
 from dissector.framing.offsets import EndAnswers, Offsets
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming, may_pause, silence_before, silences_inside
-from dissector.model import Chunk, Frame, Item, Kind, Noise
+from dissector.model import CapturedPart, Chunk, Frame, Item, Kind, Noise
 from dissector.protocol.rules import awaits_answer, echoed
 from dissector.sources.common import PartChunk
 from dissector.sources.serial_times import ByteTimedChunk, ByteTimes
@@ -29,37 +28,16 @@ GLITCHY_AFTER = 3
 GLITCH_SCORE_MAX = 8
 # The reason of the item a record captured in part is (StreamFramer._cut_part); lua/src/stream.lua says the same.
 CAPTURED_IN_PART = "captured in part"
-_PART_FIELDS = re.compile(r"; slave (\d+)(?:, function (\d+))?\)")
 
 
-def part_fields(reason: str) -> tuple[int, int | None] | None:
-    """The slave and function (None: not captured) a record captured in part's reason names (_part_fields);
-    None: no slave is known, or the reason is another's (the pairing matches the answer awaited with them)."""
-    if not reason.startswith(CAPTURED_IN_PART):
-        return None
-    found = _PART_FIELDS.search(reason)
-    if found is None:
-        return None
-    return int(found[1]), None if found[2] is None else int(found[2])
-
-
-_PART_LENGTHS = re.compile(r"\((\d+) of its (\d+) bytes")
-
-
-def part_lengths(reason: str) -> tuple[int, int] | None:
-    """The (captured, original) lengths a record captured in part's reason names (_cut_part); None: another's
-    (-w writes the record with both, as it was read: render/capturefile.py)."""
-    if not reason.startswith(CAPTURED_IN_PART):
-        return None
-    found = _PART_LENGTHS.match(reason, len(CAPTURED_IN_PART) + 1)
-    return None if found is None else (int(found[1]), int(found[2]))
-
-
-def part_answering(reason: str, number: int) -> str:
-    """The reason of a record captured in part that answers request #number (pairing.py): it says so in
-    its parentheses (`...; slave 2, function 3; the answer to #1): its CRC cannot be checked`)."""
-    head, sep, tail = reason.partition("): ")
-    return f"{head}; the answer to #{number}{sep}{tail}"
+def part_reason(part: CapturedPart) -> str:
+    """`captured in part (5 of its 9 bytes; slave 2, function 3; the answer to #1): its CRC cannot be checked`."""
+    told = ([] if part.slave is None else [f"slave {part.slave}"]) + (
+        [] if part.function is None else [f"function {part.function}"])
+    fields = "; " + ", ".join(told) if told else ""
+    answer = "" if part.answers is None else f"; the answer to #{part.answers}"
+    return (f"{CAPTURED_IN_PART} ({part.captured} of its {part.original} bytes{fields}{answer}): "
+            f"its {part.check} cannot be checked")
 
 
 class StreamFramer(ABC):
@@ -171,11 +149,11 @@ class StreamFramer(ABC):
         self._flush_noise(items)
         start = self._base + len(self._buf)  # (the buffer is empty: finish consumes it)
         data = bytes(chunk.data)
-        reason = (f"{CAPTURED_IN_PART} ({chunk.captured} of its {chunk.original} bytes{self._part_fields(data)}): "
-                  f"its {'LRC' if self.mode == 'ascii' else 'CRC'} cannot be checked")
+        part = CapturedPart(chunk.captured, chunk.original, "LRC" if self.mode == "ascii" else "CRC",
+                            *self._part_fields(data))
         if chunk.time is not None:
             self._timed = True
-        items.append(Noise(offset=start, raw=data, time=chunk.time, reason=reason))
+        items.append(Noise(offset=start, raw=data, time=chunk.time, reason=part_reason(part), part=part))
         self.cut_records += 1
         self.cut_bytes += len(data)
         end = start + len(data)
@@ -185,11 +163,10 @@ class StreamFramer(ABC):
         self._boundaries.add(end)
         return items
 
-    def _part_fields(self, data: bytes) -> str:
-        """What the bytes of a frame cut short tell: `; slave 2, function 3` (RTU; ascii.py reads its hex)."""
-        if not data:
-            return ""
-        return f"; slave {data[0]}" + (f", function {data[1]}" if len(data) > 1 else "")
+    def _part_fields(self, data: bytes) -> tuple[int | None, int | None]:
+        """What the bytes of a frame cut short tell: its slave and function, None where not captured (RTU;
+        ascii.py reads its hex)."""
+        return (data[0] if data else None), (data[1] if len(data) > 1 else None)
 
     def finish(self, silence: bool = False) -> list[Item]:
         """Close what is buffered; `silence`: live closes it at a silence on the line, and the capture goes on

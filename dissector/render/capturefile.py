@@ -30,7 +30,6 @@ from dataclasses import dataclass
 from typing import BinaryIO, Protocol
 
 from dissector.framing.rules import spans_a_frame
-from dissector.framing.stream import part_lengths
 from dissector.model import Item, Noise
 from dissector.render.describe import count_text
 from dissector.render.pcapngwriter import PcapngWriter
@@ -312,8 +311,8 @@ class CaptureOutput:
             self._write_record(data, time, own, users, continued)
         for item in items:
             split = pieces.get(id(item)) if pieces else None
-            if isinstance(item, Noise) and (lengths := part_lengths(item.reason)) is not None:
-                self._part(item, lengths[1] - lengths[0], split)
+            if isinstance(item, Noise) and item.part is not None:
+                self._part(item, item.part.original - item.part.captured, split)
                 continue
             lead = None
             if split is not None and split[0][3] < item.offset:

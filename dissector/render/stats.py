@@ -43,7 +43,6 @@ from typing import Any
 
 from rich.console import RenderableType
 
-from dissector.framing.stream import CAPTURED_IN_PART
 from dissector.model import Frame, Item, Kind, Noise
 from dissector.render import tables
 from dissector.render.describe import count_text
@@ -170,7 +169,7 @@ class StatsCollector:
                 self.first_time = item.time
             self.last_time = item.time
         if isinstance(item, Noise):
-            if item.reason.startswith(CAPTURED_IN_PART):
+            if item.part is not None:
                 self.part_items += 1
                 self.part_bytes += item.length
             else:

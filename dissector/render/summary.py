@@ -3,7 +3,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from dissector.framing.stream import CAPTURED_IN_PART
 from dissector.model import Frame, Item, Kind, Noise
 from dissector.protocol.rules import TEXTS
 from dissector.render.describe import count_text, info_text
@@ -148,7 +147,7 @@ def part_mark(noise: Noise) -> str:
     """` [captured in part (5 of its 9 bytes; slave 2, function 3): its CRC cannot be checked]` on the summary
     line of a record captured in part (framing/stream.py _cut_part), as tshark marks such a packet `[Packet size
     limited during capture]`; -V, --json and -T fields give it as the reason."""
-    return f" [{noise.reason}]" if noise.reason.startswith(CAPTURED_IN_PART) else ""
+    return f" [{noise.reason}]" if noise.part is not None else ""
 
 
 _KIND_COLUMN = {kind: f"{kind.value:<9}" for kind in Kind}
