@@ -29,8 +29,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from dissector.decode.fields import decode_frame
-from dissector.framing.bounded import NO_FRAME
-from dissector.framing.stream import NOISE_ITEM_MAX
 from dissector.devices.access import read_only_addresses
 from dissector.devices.checks import unsupported_subfunctions
 from dissector.model import Chunk, Frame, Item, Kind
@@ -491,34 +489,12 @@ class PythonSide:
         self.write_items(items)
 
 
-def _noise_eligible(framer: Any) -> bool:
-    """Does the engine frame noise the framer would (skip_noise): an RTU framer, no silence in its buffer?"""
-    return _summary is not None and framer.mode == "rtu" and not framer._silences
-
-
 def skip_noise(framer: Any) -> tuple[int, bool] | None:
-    """Add to the framer's open noise run the bytes from its buffer's start that its _run would take as
-    noise (framing/rtu.py: where no known code follows a byte, or _match finds no frame and no run the
-    line bounds starts), decided by the engine (_noise.h noise_span) in the state it decides: an RTU
-    noise run open, no silence in the buffer, the run kept under NOISE_ITEM_MAX (no item given out: the
-    framer cuts it). How many bytes it added (0: none) and whether the decision where they end waits for
-    bytes to come (else the framer takes it itself); None where the engine does not decide. Random bytes
-    framed in Python cost 4 to 5 s a megabyte (668,748 _match calls), more where pcap records bound them.
-    (It reads and extends the framer's own state, framing/stream.py's: the run, the buffer, the record
-    ends and starts, the answer awaited.)"""
-    if not framer._noise or not _noise_eligible(framer):
+    """The engine frames the noise an RTU framer's open run goes on with (framing/rtu.py take_noise, _noise.h
+    noise_span): how many bytes it took and whether where they end waits for bytes; None where it does not."""
+    if _summary is None or framer.mode != "rtu":
         return None
-    buf = framer._buf
-    limit = min(len(buf), NOISE_ITEM_MAX - 1 - len(framer._noise))  # (the caller pauses the framer anew)
-    if limit <= 0:
-        return None
-    slave, function = framer._expect if framer._expect is not None else (-1, -1)
-    end, wait = _summary.noise_span(buf, limit, slave, function, framer._echo, framer.glitchy, framer._base,
-                                    list(framer._boundaries), list(framer._record_starts))
-    if end:
-        framer._add_noise(0, end, NO_FRAME, [])  # (no item: the run stays under NOISE_ITEM_MAX bytes)
-        framer._consume(end)
-    return end, wait
+    return framer.take_noise(_summary.noise_span)
 
 
 def summarize(chunks: Iterable[Chunk], path: SummaryPath, after_chunk: Callable[[], None]) -> None:

@@ -61,6 +61,8 @@ serial reads all drive the same object, and the answer does not depend on how th
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from dissector.protocol.crc import crc16, crc_lengths
 from dissector.model import Frame, Item, Kind
 from dissector.framing.bounded import NO_FRAME, TOO_SHORT, Bounded
@@ -125,6 +127,26 @@ class RtuFramer(RecordEnds, Bounded, Awaiting, StreamFramer):
     """Push parser: feed chunks, collect items. Items come out in stream order, unnumbered."""
 
     mode = "rtu"
+
+    def take_noise(self, span: Callable[..., tuple[int, bool]]) -> tuple[int, bool] | None:
+        """Add to the open noise run the bytes from the buffer's start that _run would take as noise, as `span`
+        decides them from this framer's state (the engine's accel/_noise.h noise_span: random bytes framed
+        here cost 4 to 5 s a megabyte): the buffer, the room left under NOISE_ITEM_MAX (no item given out:
+        _run cuts it), the answer awaited, the record ends and starts. How many bytes it added (0: none) and
+        whether the decision where they end waits for bytes to come; None where it does not decide: no run
+        open, a silence in the buffer (_run weighs it), the run at its largest."""
+        if not self._noise or self._silences:
+            return None
+        limit = min(len(self._buf), NOISE_ITEM_MAX - 1 - len(self._noise))
+        if limit <= 0:
+            return None
+        slave, function = self._expect if self._expect is not None else (-1, -1)
+        end, wait = span(self._buf, limit, slave, function, self._echo, self.glitchy, self._base,
+                         list(self._boundaries), list(self._record_starts))
+        if end:
+            self._add_noise(0, end, NO_FRAME, [])
+            self._consume(end)
+        return end, wait
 
     def _valid_frame_at(
         self, buf: bytearray, i: int, n: int, final: bool, scan: bool = True
