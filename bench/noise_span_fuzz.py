@@ -12,8 +12,6 @@ the run stops (exit 1).
 """
 from __future__ import annotations
 
-import io
-import os
 import random
 import struct
 import sys
@@ -22,11 +20,11 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
+sys.path[:0] = [str(ROOT), str(ROOT / "bench")]
 
-from dissector.app.cli import Environment, run  # noqa: E402
 from dissector.protocol.crc import with_crc  # noqa: E402
 from dissector.sim.simulate import generate_session  # noqa: E402
+from timed_fuzz import decode  # noqa: E402  (the engine's and the Python stages' outputs, as the timed campaign)
 
 STARTS = (b"\x0c\x03", b"\x0c\x83", b"\x0c\x08\x00\x00", b"\x0c\x08", b"\x01\x03", b"\x01\x10", b"\x00", b"\xff",
           b"\xfe", b"\x00\x03", b"\x00\x06", b"\xf8\x03", b"\x01\x2b\x0e", b"\x01\x2b\x0e\x01\x01\x00\x00\x02",
@@ -71,16 +69,6 @@ def as_pcap(rng: random.Random, data: bytes) -> bytes:
         ns += len(record) * 573_000 + (gap if rng.random() < 0.3 else 0)
         start += len(record)
     return bytes(out)
-
-
-def decode(argv: list[str], pure: bool) -> tuple[int, str]:
-    if pure:
-        os.environ["VW3_PURE_PYTHON"] = "1"
-    else:
-        os.environ.pop("VW3_PURE_PYTHON", None)
-    stdout, stderr = io.StringIO(), io.StringIO()
-    code = run(argv, Environment(io.BytesIO(), stdout, stderr, False, False))
-    return code, stdout.getvalue() + stderr.getvalue()
 
 
 def main() -> int:
