@@ -10211,8 +10211,14 @@ local pinfo_number, pinfo_port_type, pinfo_cols = getter("Pinfo", "number"), get
   getter("Pinfo", "cols")
 local pinfo_abs_ts, pinfo_rel_ts, tree_text = getter("Pinfo", "abs_ts"), getter("Pinfo", "rel_ts"),
   getter("TreeItem", "text")
-local tvb_raw = function(tvb) return tvb:raw() end
-if type(Tvb) == "table" and type(rawget(Tvb, "raw")) == "function" then tvb_raw = rawget(Tvb, "raw") end
+local function tvb_method(name) -- (Tvb's own function, called directly: no __index look-up)
+  local direct = type(Tvb) == "table" and rawget(Tvb, name)
+  if type(direct) == "function" then return direct end
+  return function(tvb) return tvb[name](tvb) end
+end
+-- (the check of a record captured in part, tvb:len() and tvb:reported_len(), cost 3,430 instructions a record
+-- through __index, 1,610 so: bench/lua_throughput.py --instructions, plant mix)
+local tvb_raw, tvb_len, tvb_reported_len = tvb_method("raw"), tvb_method("len"), tvb_method("reported_len")
 
 -- Record times in integer nanoseconds from a base second of the capture (a double holds them exactly up to
 -- 2^53: 104 days), as vw3-decode's Stamps keep the nanoseconds the file wrote (model.py Stamp): every
@@ -10354,7 +10360,8 @@ local function keep_time(number, ns)
   clock.times[number] = ns or false
 end
 M.keep_time, M.pinfo_cols, M.pinfo_number, M.pinfo_port_type = keep_time, pinfo_cols, pinfo_number, pinfo_port_type
-M.record_ns, M.tree_text, M.tvb_raw = record_ns, tree_text, tvb_raw
+M.record_ns, M.tree_text, M.tvb_len, M.tvb_raw = record_ns, tree_text, tvb_len, tvb_raw
+M.tvb_reported_len = tvb_reported_len
 end
 
 -- ---- vw3.show: lua/src/show.lua ----
@@ -10855,7 +10862,8 @@ local ipairs, lane, mask_register, new_state, os, pack = ipairs, lane, mask_regi
 local package, pair_scan, pcall, pf, pinfo_cols = package, pair_scan, pcall, pf, pinfo_cols
 local pinfo_number, pinfo_port_type, proto, record_ns = pinfo_number, pinfo_port_type, proto, record_ns
 local sample_modes, show_record, stream_state, tostring = sample_modes, show_record, stream_state, tostring
-local tree_text, tvb_raw, type, wtap = tree_text, tvb_raw, type, wtap
+local tree_text, tvb_len, tvb_raw, tvb_reported_len, type = tree_text, tvb_len, tvb_raw, tvb_reported_len, type
+local wtap = wtap
 
 -- A stream's mode, where no preference sets it, is told from its first bytes as vw3-decode tells it
 -- (protocol/ascii.py sample_mode: MODE_SAMPLE bytes, up to MODE_REACH after line noise), and those may
@@ -10940,7 +10948,7 @@ local function dissect_records(st, tvb, pinfo, tree)
     if number <= 2 then epoch_first(st, tvb, pinfo, number) end
     -- A record captured in part (a snapshot length shorter than it: tshark's `[Packet size limited during
     -- capture]`) is a cut: lua/src/records.lua cut_part.
-    local captured, original = tvb:len(), tvb:reported_len()
+    local captured, original = tvb_len(tvb), tvb_reported_len(tvb)
     if original > captured then lane.captured_in_part(number, captured, original) end
     -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)
     local ok, result, n, info = pcall(st.sample ~= false and sample_and_dissect or dissect_now, st, tvb, pinfo, number)

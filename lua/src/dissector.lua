@@ -87,7 +87,7 @@ local function dissect_records(st, tvb, pinfo, tree)
     if number <= 2 then epoch_first(st, tvb, pinfo, number) end
     -- A record captured in part (a snapshot length shorter than it: tshark's `[Packet size limited during
     -- capture]`) is a cut: lua/src/records.lua cut_part.
-    local captured, original = tvb:len(), tvb:reported_len()
+    local captured, original = tvb_len(tvb), tvb_reported_len(tvb)
     if original > captured then lane.captured_in_part(number, captured, original) end
     -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)
     local ok, result, n, info = pcall(st.sample ~= false and sample_and_dissect or dissect_now, st, tvb, pinfo, number)
