@@ -511,6 +511,9 @@ def _summary(err: TextIO, live: Any, compiled: str | None, stats: LiveStats, han
         err.write(f"{PROG}: error: {shown(capture.reason)}; capture files closed\n")
     for warning in map_warnings([annotate]):
         err.write(f"{PROG}: warning: {shown(warning)}\n")
+    watching = getattr(sink, "inner", sink)  # (-Y in front of --watch: live_display.FilteredSink)
+    for line in getattr(watching, "unseen", list)():  # a watched address or code never heard, as a file says it
+        err.write(f"{PROG}: {shown(line)}\n")
     hidden = stats.not_shown_text()
     err.write(f"{PROG}: {stats.summary(seconds)}{written}{'; ' + hidden if hidden else ''}\n")
     err.flush()

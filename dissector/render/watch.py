@@ -539,6 +539,10 @@ class WatchSink:
     def close(self) -> None:
         self._pump.close()
 
+    def unseen(self) -> list[str]:
+        """At the capture's end, as a file's decode says them (Watcher.unseen)."""
+        return self.watcher.unseen()
+
 
 def printer(write: Callable[[str], None], as_json: bool, file: str | None = None) -> Callable[[Change], None]:
     """`file`: the bus's title, of several (render/buses.py), as --json's items name their input. A change's

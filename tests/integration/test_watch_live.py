@@ -103,3 +103,19 @@ def test_live_refuses_a_bad_filter_or_watch_name_before_listening() -> None:
     finally:
         os.close(line)
         os.close(device_fd)
+
+
+def test_live_watch_says_what_it_never_heard_as_a_file_does(tmp_path) -> None:
+    """A watched address or code the line never carried is said at the end on stderr, as a file's decode
+    says it (was: nothing, with --live)."""
+    lines, err, status = run_live("--watch", "CHCF,9999,HSP")
+    assert status == 0
+    assert [text.split(None, 2)[2] for text in lines] == ["12 CHCF 3 IO (I/O profile) -> protected"]
+    said = [text for text in err.splitlines() if "--watch" in text]
+    assert said == ["vw3-decode: --watch 9999: no register 9999 in the capture",
+                    "vw3-decode: --watch HSP: no register named HSP in the capture"]
+    capture = tmp_path / "p38.bin"
+    capture.write_bytes(b"".join(bytes.fromhex(frame.replace(" ", "")) for frame in P38))
+    decoded = subprocess.run([sys.executable, "-m", "dissector", str(capture), "--watch", "CHCF,9999,HSP"],
+                             cwd=ROOT, capture_output=True, text=True, timeout=60)
+    assert [text for text in decoded.stderr.splitlines() if "--watch" in text] == said
