@@ -1,0 +1,157 @@
+"""vw3-decode reads the Ethernet side of a serial gateway as the plugin does (sources/ethernet.py): the TCP/UDP
+payloads on the RTU ports (--tcp-port/--udp-port, the plugin's vw3.tcp_port/vw3.udp_port) are the bus's
+records, with the packets' times; a frame split over two segments is one frame; each connection is a bus;
+packets without bus bytes are counted in one warning; a capture with none on the ports is refused in one
+line naming the ports and the options."""
+from __future__ import annotations
+
+import json
+import struct
+import subprocess
+from pathlib import Path
+
+from helpers import run_cli
+from lua_harness import lua_errors, run_tshark
+from lua_net import NetWriter
+from seed_frames import SCENARIO_1, SCENARIO_2, SCENARIO_REQUEST
+
+ATV71 = ["--profile", "atv71"]
+REQUEST = ("12 request   Read Holding Registers 8400..8402 (3)  CRC ok")
+ANSWER_1 = ("12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent CHCF=IO (I/O profile) "
+            "COP=Cd (command) [#1, 10.0 ms]  CRC ok")
+ANSWER_2 = ("12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent CHCF=protected COP=Cd (command) "
+            "[#3, 10.0 ms] [CHCF (8401) became protected: read 3 in frame #2, 16#8000 now]  CRC ok")
+SKIPPED = ("vw3-decode: warning: {name}: 3 packets carried no Modbus RTU bytes on TCP port 4001 and were skipped "
+           "(1 not IP, 1 TCP without payload, 1 other ports)\n")
+
+
+def gateway(path: Path) -> Path:
+    """A gateway's TCP port 4001: an ARP, an empty segment, two polls, the first answer split over two segments
+    (4 + 7 bytes), a DNS datagram between."""
+    writer = NetWriter(path)
+    writer._write(bytes(28), 0.9)  # (its ethertype, 0800, with no IPv4 header: not IP)
+    writer.tcp(True, 40001, 4001, b"", 0.95)
+    writer.tcp(True, 40001, 4001, SCENARIO_REQUEST, 1.000)
+    writer.tcp(False, 40001, 4001, SCENARIO_1[:4], 1.010)
+    writer.tcp(False, 40001, 4001, SCENARIO_1[4:], 1.012)
+    writer.udp(True, 5353, 53, bytes(12), 1.02)
+    writer.tcp(True, 40001, 4001, SCENARIO_REQUEST, 1.100)
+    writer.tcp(False, 40001, 4001, SCENARIO_2, 1.110)
+    writer.close()
+    return path
+
+
+def lines(*rows: tuple[int, str, str]) -> str:
+    return "".join(f"{number:6d}  {time:>11}  {text}\n" for number, time, text in rows)
+
+
+def test_a_frame_split_over_two_segments_is_one_frame(tmp_path: Path) -> None:
+    pcap = gateway(tmp_path / "gateway.pcap")
+    status, out, err = run_cli(["--tcp-port", "4001", *ATV71, str(pcap)])
+    assert status == 0
+    assert out == lines((1, "0.000000", REQUEST), (2, "0.010000", ANSWER_1), (3, "0.100000", REQUEST),
+                        (4, "0.110000", ANSWER_2))
+    assert err == SKIPPED.format(name=pcap)
+
+
+def test_json_and_stats_have_the_packets_times(tmp_path: Path) -> None:
+    pcap = gateway(tmp_path / "gateway.pcap")
+    out = run_cli(["--tcp-port", "4001", *ATV71, "--json", str(pcap)])[1]
+    frames = [json.loads(line) for line in out.splitlines()]
+    assert [(frame["kind"], frame["time"], frame["raw"], frame.get("request_frame")) for frame in frames] == [
+        ("request", 1.0, SCENARIO_REQUEST.hex(), None), ("response", 1.01, SCENARIO_1.hex(), 1),
+        ("request", 1.1, SCENARIO_REQUEST.hex(), None), ("response", 1.11, SCENARIO_2.hex(), 3)]
+    status, out, err = run_cli(["--tcp-port", "4001", *ATV71, "--stats", str(pcap)])
+    assert status == 0 and err == SKIPPED.format(name=pcap)
+    assert "   12  3 Read Holding Registers    2     2                     0        0\n" in out
+
+
+def test_the_plugin_shows_the_same_frames(tmp_path: Path) -> None:
+    pcap = gateway(tmp_path / "gateway.pcap")
+    done = run_tshark(pcap, "-o", "vw3.tcp_port:4001", "-o", "vw3.profiles:atv71", "-T", "fields",
+                      "-E", "separator=|", "-e", "frame.number", "-e", "_ws.col.Info", "-e", "vw3.kind",
+                      "-e", "vw3.slave", "-e", "vw3.request_frame", "-e", "vw3.response_time", "-e", "vw3.note")
+    assert done.returncode == 0 and not lua_errors(done.stdout + done.stderr)
+    ours = [json.loads(line) for line in run_cli(["--tcp-port", "4001", *ATV71, "--json", str(pcap)])[1].splitlines()]
+    rows = [line.split("|") for line in done.stdout.splitlines() if line.split("|")[2]]
+    # The plugin shows a frame in the packet that completes it (packet 5 for the split answer); the texts,
+    # kinds, slaves, pairing (in packets: 3, 7) and response times are vw3-decode's.
+    assert [row[1] for row in rows] == ["12 Read Holding Registers request 8400..8402 (3)",
+                                        "12 Read Holding Registers response 8400..8402 (3)"] * 2
+    assert [(row[0], row[4]) for row in rows] == [("3", ""), ("5", "3"), ("7", ""), ("8", "7")]
+    assert [(row[2], int(row[3]), row[5], row[6]) for row in rows] == [
+        ({"request": "1", "response": "2"}[frame["kind"]], frame["slave"],
+         f"{frame['response_time']:.9f}" if "response_time" in frame else "", ",".join(frame["notes"]))
+        for frame in ours]
+    assert ",".join(ours[3]["notes"]) == "CHCF (8401) became protected: read 3 in frame #2, 16#8000 now"
+
+
+def test_an_ethernet_capture_without_the_port_is_refused_in_one_line(tmp_path: Path) -> None:
+    pcap = gateway(tmp_path / "gateway.pcap")
+    assert run_cli([str(pcap)]) == (2, "", (
+        f"vw3-decode: {pcap}: Ethernet (linktype 1): no TCP or UDP payload on the Modbus RTU ports (none given: "
+        "--tcp-port and --udp-port, as the plugin's vw3.tcp_port and vw3.udp_port preferences, set them); "
+        "payloads on TCP port 4001 (5 packets), UDP port 53 (1 packet)\n"))
+
+
+def test_modbus_tcp_is_named_in_the_refusal(tmp_path: Path) -> None:
+    writer = NetWriter(tmp_path / "mbtcp.pcap")
+    writer.tcp(True, 40000, 502, struct.pack("!HHHB", 1, 0, 6, 12) + SCENARIO_REQUEST[1:6], 1.0)
+    writer.close()
+    assert run_cli(["--tcp-port", "4001", str(tmp_path / "mbtcp.pcap")]) == (2, "", (
+        f"vw3-decode: {tmp_path / 'mbtcp.pcap'}: Ethernet (linktype 1): no TCP or UDP payload on the Modbus RTU "
+        "ports (TCP port 4001: --tcp-port and --udp-port, as the plugin's vw3.tcp_port and vw3.udp_port "
+        "preferences, set them); payloads on TCP port 502 (1 packet); port 502 is Modbus/TCP (MBAP header, "
+        "no CRC), which vw3-decode does not read: tshark with lua/vw3.lua and lua/vw3_modbus.lua names its "
+        "registers\n"))
+
+
+def test_two_connections_are_two_buses(tmp_path: Path) -> None:
+    # Two masters poll one gateway; their answers come split and interleaved: each pairs with its own request.
+    writer = NetWriter(tmp_path / "two.pcap")
+    writer.tcp(True, 40001, 5020, SCENARIO_REQUEST, 1.000)
+    writer.tcp(True, 40002, 5020, SCENARIO_REQUEST, 1.001)
+    writer.tcp(False, 40002, 5020, SCENARIO_1[:5], 1.010)
+    writer.tcp(False, 40001, 5020, SCENARIO_1[:3], 1.011)
+    writer.tcp(False, 40002, 5020, SCENARIO_1[5:], 1.012)
+    writer.tcp(False, 40001, 5020, SCENARIO_1[3:], 1.013)
+    writer.close()
+    pcap = tmp_path / "two.pcap"
+    answer = ANSWER_1.replace("10.0 ms", "{} ms")
+    assert run_cli(["--tcp-port", "5020", *ATV71, str(pcap)]) == (0, (
+        f"==> {pcap}: TCP 10.0.0.1:40001 - 10.0.0.2:5020 <==\n"
+        + lines((1, "0.000000", REQUEST), (2, "0.011000", answer.format("11.0")))
+        + f"==> {pcap}: TCP 10.0.0.1:40002 - 10.0.0.2:5020 <==\n"
+        + lines((1, "0.000000", REQUEST), (2, "0.009000", answer.format("9.0")))), "")
+
+
+def _relinked(pcap: Path, path: Path, linktype: int, strip: int, header: bytes) -> Path:
+    """The same packets with their Ethernet header (`strip` bytes) replaced by another link's `header`."""
+    data = pcap.read_bytes()
+    out, at = bytearray(data[:20] + struct.pack("<I", linktype)), 24
+    while at < len(data):
+        seconds, fraction, captured, _original = struct.unpack_from("<IIII", data, at)
+        body = header + data[at + 16 + strip : at + 16 + captured]
+        out += struct.pack("<IIII", seconds, fraction, len(body), len(body)) + body
+        at += 16 + captured
+    path.write_bytes(bytes(out))
+    return path
+
+
+def test_linux_cooked_raw_ip_udp_and_pcapng_read_alike(tmp_path: Path) -> None:
+    pcap = gateway(tmp_path / "gateway.pcap")
+    expected = lines((1, "0.000000", REQUEST), (2, "0.010000", ANSWER_1), (3, "0.100000", REQUEST),
+                     (4, "0.110000", ANSWER_2))
+    sll = _relinked(pcap, tmp_path / "sll.pcap", 113, 14, bytes(14) + b"\x08\x00")
+    sll2 = _relinked(pcap, tmp_path / "sll2.pcap", 276, 14, b"\x08\x00" + bytes(18))
+    raw = _relinked(pcap, tmp_path / "raw.pcap", 101, 14, b"")
+    pcapng = tmp_path / "gateway.pcapng"
+    subprocess.run(["editcap", "-F", "pcapng", str(pcap), str(pcapng)], check=True)
+    for path in (sll, sll2, raw, pcapng):
+        assert run_cli(["--tcp-port", "4001", *ATV71, str(path)])[1] == expected, path
+    writer = NetWriter(tmp_path / "udp.pcap")
+    writer.udp(True, 40001, 5021, SCENARIO_REQUEST, 1.0)
+    writer.udp(False, 40001, 5021, SCENARIO_1, 1.01)
+    writer.close()
+    assert run_cli(["--udp-port", "5021", *ATV71, str(tmp_path / "udp.pcap")]) == (
+        0, lines((1, "0.000000", REQUEST), (2, "0.010000", ANSWER_1)), "")
