@@ -15,6 +15,7 @@ import struct
 from dataclasses import dataclass, field
 
 from dissector.errors import SourceError
+from dissector.protocol.crc import crc16_reference
 
 LINKTYPE_NULL, LINKTYPE_ETHERNET, LINKTYPE_RAW, LINKTYPE_LINUX_SLL = 0, 1, 101, 113
 LINKTYPE_IPV4, LINKTYPE_IPV6, LINKTYPE_LINUX_SLL2 = 228, 229, 276
@@ -56,6 +57,8 @@ class Segment:
     transport: str
     data: bytes
     declared: int
+    sender: str = ""  # its source end
+    seq: int | None = None  # TCP's sequence number
 
 
 def _address(raw: bytes) -> str:
@@ -118,8 +121,9 @@ def segment(linktype: int, record: bytes) -> Segment | str:
     if isinstance(ip, str):
         return ip
     protocol, source, destination, body, declared = ip
+    seq = None
     if protocol == TCP and len(body) >= 20:
-        sport, dport, offset = struct.unpack_from("!HH8xB", body)
+        sport, dport, seq, offset = struct.unpack_from("!HHI4xB", body)
         header, name = (offset >> 4) * 4, "TCP"
     elif protocol == UDP and len(body) >= 8:
         sport, dport, length = struct.unpack_from("!HHH", body)
@@ -128,7 +132,7 @@ def segment(linktype: int, record: bytes) -> Segment | str:
         return "not TCP or UDP"
     a, b = f"{_address(source)}:{sport}", f"{_address(destination)}:{dport}"
     connection = (name, *sorted((a, b)))
-    return Segment(connection, (sport, dport), name, body[header:declared], max(declared - header, 0))
+    return Segment(connection, (sport, dport), name, body[header:declared], max(declared - header, 0), a, seq)
 
 
 @dataclass(slots=True)
@@ -144,10 +148,14 @@ class Transport:
     skipped: dict[str, int] = field(default_factory=dict)
     elsewhere: dict[tuple[str, int], int] = field(default_factory=dict)  # payloads on other ports
     connections: list[Connection] = field(default_factory=list)  # on the RTU ports, in order of appearance
+    records: int = 0  # the capture's, to name one
+    judged: set[Connection] = field(default_factory=set)  # connections whose first payload was looked at
+    sent: dict[str, int] = field(default_factory=dict)  # a TCP sender's next sequence number
 
     def take(self, linktype: int, record: bytes) -> Segment | None:
         """The record's payload when it is the bus's; else None (counted)."""
         self.linktype = linktype if self.linktype is None else self.linktype
+        self.records += 1
         found = segment(linktype, record)
         if isinstance(found, str):
             return self._skip(found)
@@ -163,8 +171,38 @@ class Transport:
             return self._skip("other connections")
         if not found.declared:
             return self._skip(f"{found.transport} without payload")
+        if found.seq is not None and self._again(found):
+            return self._skip("TCP retransmissions")
+        if found.connection not in self.judged:  # (its first payload)
+            self.judged.add(found.connection)
+            self._refuse_modbus_tcp(found, port)
         self.taken += 1
         return found
+
+    def _refuse_modbus_tcp(self, found: Segment, port: int) -> None:
+        """A connection whose first payload is a Modbus/TCP ADU (MBAP header: protocol 0, its length the
+        rest), not an RTU frame (its CRC): refused in one line rather than shown as noise."""
+        data = found.data
+        if len(data) < 8 or data[2:4] != b"\0\0" or int.from_bytes(data[4:6], "big") != len(data) - 6:
+            return
+        if crc16_reference(data[:-2]) == int.from_bytes(data[-2:], "little"):
+            return
+        raise SourceError(
+            f"{self.name}: record {self.records}: {found.transport} port {port} carries Modbus/TCP (MBAP header: "
+            f"transaction {int.from_bytes(data[:2], 'big')}, unit {data[6]}, no CRC), not Modbus RTU frames, "
+            "which vw3-decode does not read: tshark with lua/vw3.lua and lua/vw3_modbus.lua names its registers")
+
+    def _again(self, found: Segment) -> bool:
+        """A TCP segment whose bytes all came before (a retransmission): Wireshark's TCP gives it no
+        subdissector, so the plugin never sees it. Sequence numbers compared modulo 2**32."""
+        end = (found.seq + found.declared) & 0xFFFFFFFF
+        sent = self.sent.get(found.sender)
+        if sent is not None:
+            ahead = (end - sent) & 0xFFFFFFFF
+            if ahead == 0 or ahead & 0x80000000:
+                return True
+        self.sent[found.sender] = end
+        return False
 
     def _skip(self, why: str) -> None:
         self.skipped[why] = self.skipped.get(why, 0) + 1

@@ -14,6 +14,7 @@ connection's stream (two masters polling one gateway: each answer paired with it
 """
 from __future__ import annotations
 
+import functools
 import os
 import stat
 import struct
@@ -21,7 +22,7 @@ from dataclasses import dataclass
 
 from dissector.sources.common import Input, SourceError, WarningLog
 from dissector.sources.ethernet import Connection, RtuPorts
-from dissector.sources.pcap import is_pcap, read_pcap
+from dissector.sources.pcap import PcapRecords, is_pcap, read_pcap
 from dissector.sources.pcapng import (
     EPB,
     IDB,
@@ -68,32 +69,25 @@ def packet_interfaces(path: str, ports: RtuPorts = RtuPorts()) -> list[PacketInt
 def connections(path: str, ports: RtuPorts) -> list[PacketInterface]:
     """The connections on the RTU ports of a pcap or pcapng file of a network link, in order of appearance,
     each a bus (titled by its transport and ends), when there are several; else []. The file is read once
-    for it (records only: no decode)."""
+    for it (records only: no decode), once for its size and time (the buses' Sources ask again)."""
+    status = os.stat(path)
+    return list(_connections(path, status.st_size, status.st_mtime_ns, ports))
+
+
+@functools.lru_cache(maxsize=8)
+def _connections(path: str, _size: int, _mtime: int, ports: RtuPorts) -> tuple[PacketInterface, ...]:
     with open(path, "rb") as stream:
-        head = stream.read(4)
-        stream.seek(0)
-        inp = Input(stream, path)
-        if is_pcap(head):
-            records = read_pcap(inp, WarningLog(), 65536, ports)
-            units = records.time_units
-            for _chunk in records:
-                pass
-            transport = records.transport
-        elif head == SHB_MAGIC:
-            chunks = read_pcapng(inp, WarningLog(), 65536, ports=ports)
-            for _chunk in chunks:
-                pass
-            units = chunks.time_units or 1_000_000
-            transport = chunks._reader.transport if chunks._reader.networked else None
-        else:
-            return []
-    found = transport.connections if transport is not None else []
-    if len(found) < 2:
-        return []
-    buses = [PacketInterface(ordinal, Interface(LINKTYPE_USER0, 0, units, name=f"{kind} {a} - {b}"),
-                             connection=(kind, a, b)) for ordinal, (kind, a, b) in enumerate(found)]
-    buses[0].first = True
-    return buses
+        chunks = _network_chunks(stream, path, WarningLog(), 1 << 16, ports, None)
+        if isinstance(chunks, PcapRecords) and chunks.transport is None:  # (a serial pcap is not read here)
+            return ()
+        for _chunk in chunks:
+            pass
+        transport, units = chunks.transport, chunks.time_units or 1_000_000
+    if transport is None or len(transport.connections) < 2:
+        return ()
+    return tuple(PacketInterface(ordinal, Interface(LINKTYPE_USER0, 0, units, name=f"{kind} {a} - {b}"),
+                                 first=ordinal == 0, connection=(kind, a, b))
+                 for ordinal, (kind, a, b) in enumerate(transport.connections))
 
 
 def _walk(stream, size: int, path: str) -> list[PacketInterface]:  # type: ignore[no-untyped-def]
@@ -167,8 +161,8 @@ def open_interface(  # type: ignore[no-untyped-def]
     try:
         log = WarningLog()
         if connection is not None:
-            chunks = _connection_chunks(stream, path, log, chunk_size, ports, connection)
-            form = "pcap" if is_pcap(chunks_head(path)) else "pcapng"
+            chunks = _network_chunks(stream, path, log, chunk_size, ports, connection)
+            form = "pcap" if isinstance(chunks, PcapRecords) else "pcapng"
         else:
             chunks = read_pcapng(Input(stream, path), log, chunk_size, only=ordinal, tell_skipped=tell_skipped,
                                  where=where)
@@ -184,14 +178,13 @@ def open_interface(  # type: ignore[no-untyped-def]
         raise
 
 
-def chunks_head(path: str) -> bytes:
-    with open(path, "rb") as stream:
-        return stream.read(4)
-
-
-def _connection_chunks(stream, path: str, log: WarningLog, chunk_size: int, ports: RtuPorts,  # type: ignore[no-untyped-def]
-                       connection: Connection):
-    """The chunks of one connection of a network capture (its payloads on the RTU ports)."""
-    if is_pcap(chunks_head(path)):
+def _network_chunks(stream, path: str, log: WarningLog, chunk_size: int, ports: RtuPorts,  # type: ignore[no-untyped-def]
+                    connection: Connection | None):
+    """The chunks of a pcap or pcapng read for its network link's RTU payloads (`connection`: one's alone);
+    their `transport` (sources/ethernet.py): a pcap's from its header, a pcapng's once a network packet is read;
+    None for a serial capture."""
+    head = stream.read(4)
+    stream.seek(0)
+    if is_pcap(head):
         return read_pcap(Input(stream, path), log, chunk_size, ports, connection)
     return read_pcapng(Input(stream, path), log, chunk_size, ports=ports, connection=connection)

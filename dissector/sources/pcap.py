@@ -3,7 +3,8 @@ modified pcap of Alexey Kuznetzov's patched libpcap (editcap -F modpcap, magic a
 
 A record is one read of the serial line (one frame for most sniffers, any run of bytes for others):
 it becomes one Chunk with the record's time and boundary=True. Only the link types that carry raw
-serial bytes are accepted (common.SUPPORTED_LINKTYPES); anything else is an error, not noise.
+serial bytes are accepted (common.SUPPORTED_LINKTYPES), and network links whose TCP/UDP payloads on the RTU
+ports are the bus's (sources/ethernet.py); anything else is an error, not noise.
 """
 from __future__ import annotations
 

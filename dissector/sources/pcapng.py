@@ -474,6 +474,11 @@ class PcapngChunks:
         return self._reader.last_time
 
     @property
+    def transport(self) -> Transport | None:
+        """Its network interfaces' reading (sources/ethernet.py), once one's packet is read; else None."""
+        return self._reader.transport if self._reader.networked else None
+
+    @property
     def time_units(self) -> int | None:
         """The finest time units a second (if_tsresol) of the interfaces described so far, of the one read
         (`only`) if described; None before any (render/timefmt.py column_digits)."""

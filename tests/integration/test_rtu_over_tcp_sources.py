@@ -116,13 +116,14 @@ def test_two_connections_are_two_buses(tmp_path: Path) -> None:
     writer.tcp(False, 40002, 5020, SCENARIO_1[5:], 1.012)
     writer.tcp(False, 40001, 5020, SCENARIO_1[3:], 1.013)
     writer.close()
-    pcap = tmp_path / "two.pcap"
     answer = ANSWER_1.replace("10.0 ms", "{} ms")
-    assert run_cli(["--tcp-port", "5020", *ATV71, str(pcap)]) == (0, (
-        f"==> {pcap}: TCP 10.0.0.1:40001 - 10.0.0.2:5020 <==\n"
-        + lines((1, "0.000000", REQUEST), (2, "0.011000", answer.format("11.0")))
-        + f"==> {pcap}: TCP 10.0.0.1:40002 - 10.0.0.2:5020 <==\n"
-        + lines((1, "0.000000", REQUEST), (2, "0.009000", answer.format("9.0")))), "")
+    subprocess.run(["editcap", "-F", "pcapng", str(tmp_path / "two.pcap"), str(tmp_path / "two.pcapng")], check=True)
+    for pcap in (tmp_path / "two.pcap", tmp_path / "two.pcapng"):
+        assert run_cli(["--tcp-port", "5020", *ATV71, str(pcap)]) == (0, (
+            f"==> {pcap}: TCP 10.0.0.1:40001 - 10.0.0.2:5020 <==\n"
+            + lines((1, "0.000000", REQUEST), (2, "0.011000", answer.format("11.0")))
+            + f"==> {pcap}: TCP 10.0.0.1:40002 - 10.0.0.2:5020 <==\n"
+            + lines((1, "0.000000", REQUEST), (2, "0.009000", answer.format("9.0")))), "")
 
 
 def _relinked(pcap: Path, path: Path, linktype: int, strip: int, header: bytes) -> Path:
@@ -155,3 +156,42 @@ def test_linux_cooked_raw_ip_udp_and_pcapng_read_alike(tmp_path: Path) -> None:
     writer.close()
     assert run_cli(["--udp-port", "5021", *ATV71, str(tmp_path / "udp.pcap")]) == (
         0, lines((1, "0.000000", REQUEST), (2, "0.010000", ANSWER_1)), "")
+
+
+def test_modbus_tcp_on_the_rtu_port_is_refused_not_shown_as_noise(tmp_path: Path) -> None:
+    # Port 502 given as the RTU port: its first payload is an MBAP header (protocol 0, length 6: the rest),
+    # not an RTU frame (no CRC), after an empty segment.
+    writer = NetWriter(tmp_path / "mbtcp.pcap")
+    writer.tcp(True, 40000, 502, b"", 0.5)
+    writer.tcp(True, 40000, 502, struct.pack("!HHHB", 7, 0, 6, 12) + SCENARIO_REQUEST[1:6], 1.0)
+    writer.close()
+    assert run_cli(["--tcp-port", "502", str(tmp_path / "mbtcp.pcap")]) == (2, "", (
+        f"vw3-decode: {tmp_path / 'mbtcp.pcap'}: record 2: TCP port 502 carries Modbus/TCP (MBAP header: "
+        "transaction 7, unit 12, no CRC), not Modbus RTU frames, which vw3-decode does not read: tshark with "
+        "lua/vw3.lua and lua/vw3_modbus.lua names its registers\n"))
+    # RTU over TCP on port 502 (a gateway's choice) is read: its frame checks out.
+    writer = NetWriter(tmp_path / "rtu502.pcap")
+    writer.tcp(True, 40000, 502, SCENARIO_REQUEST, 1.0)
+    writer.close()
+    assert run_cli(["--tcp-port", "502", *ATV71, str(tmp_path / "rtu502.pcap")]) == (
+        0, lines((1, "0.000000", REQUEST.replace(
+            "(3)", "(3) [the capture ends before any response: not known whether it was answered]"))), "")
+
+
+def test_a_retransmitted_segment_is_read_once_as_the_plugin_reads_it(tmp_path: Path) -> None:
+    # The request sent again 200 ms later with the same sequence number: Wireshark's TCP gives the retransmission
+    # to no dissector, so the answer pairs with the first (210 ms), not with a second request.
+    writer = NetWriter(tmp_path / "again.pcap")
+    writer.tcp(True, 40001, 4001, SCENARIO_REQUEST, 1.000)
+    writer._seq[(40001, 4001)] -= len(SCENARIO_REQUEST)
+    writer.tcp(True, 40001, 4001, SCENARIO_REQUEST, 1.200)
+    writer.tcp(False, 40001, 4001, SCENARIO_1, 1.210)
+    writer.close()
+    pcap = tmp_path / "again.pcap"
+    assert run_cli(["--tcp-port", "4001", *ATV71, str(pcap)]) == (
+        0, lines((1, "0.000000", REQUEST), (2, "0.210000", ANSWER_1.replace("10.0 ms", "210.0 ms"))),
+        f"vw3-decode: warning: {pcap}: 1 packet carried no Modbus RTU bytes on TCP port 4001 and were skipped "
+        "(1 TCP retransmissions)\n")
+    done = run_tshark(pcap, "-o", "vw3.tcp_port:4001", "-T", "fields", "-E", "separator=|", "-e", "frame.number",
+                      "-e", "vw3.kind", "-e", "vw3.request_frame", "-e", "vw3.response_time")
+    assert done.stdout.splitlines() == ["1|1||", "2|||", "3|2|1|0.210000000"]
