@@ -303,7 +303,12 @@ def _payload_chunks(inp: Input, length: int, time: Stamp | None, linktype: int, 
     if len(data) < length:
         log.warn("truncated input", f"record {record} is cut short: {len(data)} of {length} bytes "
                  "(the capture ends inside it); the bytes that are there are decoded")
-    found = transport.take(linktype, data)
+    known = len(transport.connections)
+    found = transport.take(linktype, data, record)
+    if known == 1 and len(transport.connections) == 2 and transport.only is None:
+        # (a file is read once per connection, each its own bus: sources/interfaces.py; a pipe cannot be)
+        log.warn("connections", "packets come from several connections on the RTU ports; their bytes are decoded "
+                 "as one stream (vw3-decode FILE decodes each connection as its own bus: save standard input to a file)")
     if found is None:
         return
     if found.declared > len(found.data):

@@ -75,6 +75,7 @@ def _ip(packet: bytes) -> tuple[int, bytes, bytes, bytes, int] | str:
     if version == 4 and len(packet) >= 20:
         header = (packet[0] & 0x0F) * 4
         total, flags_offset, protocol = struct.unpack_from("!H2xHxB", packet, 2)
+        total = total or len(packet)  # (0: a segment the sender's NIC splits, TSO, captured before: Wireshark's guess)
         if flags_offset & 0x3FFF:  # (more fragments, or a fragment's offset: no transport header of its own)
             return "fragmented IP"
         return protocol, packet[12:16], packet[16:20], packet[header:total], total - header
@@ -148,14 +149,12 @@ class Transport:
     skipped: dict[str, int] = field(default_factory=dict)
     elsewhere: dict[tuple[str, int], int] = field(default_factory=dict)  # payloads on other ports
     connections: list[Connection] = field(default_factory=list)  # on the RTU ports, in order of appearance
-    records: int = 0  # the capture's, to name one
     judged: set[Connection] = field(default_factory=set)  # connections whose first payload was looked at
-    sent: dict[str, int] = field(default_factory=dict)  # a TCP sender's next sequence number
+    sent: dict[tuple[Connection, str], int] = field(default_factory=dict)  # a TCP sender's next sequence number
 
-    def take(self, linktype: int, record: bytes) -> Segment | None:
-        """The record's payload when it is the bus's; else None (counted)."""
+    def take(self, linktype: int, record: bytes, number: int) -> Segment | None:
+        """The payload of record `number` when it is the bus's; else None (counted)."""
         self.linktype = linktype if self.linktype is None else self.linktype
-        self.records += 1
         found = segment(linktype, record)
         if isinstance(found, str):
             return self._skip(found)
@@ -175,11 +174,11 @@ class Transport:
             return self._skip("TCP retransmissions")
         if found.connection not in self.judged:  # (its first payload)
             self.judged.add(found.connection)
-            self._refuse_modbus_tcp(found, port)
+            self._refuse_modbus_tcp(found, port, number)
         self.taken += 1
         return found
 
-    def _refuse_modbus_tcp(self, found: Segment, port: int) -> None:
+    def _refuse_modbus_tcp(self, found: Segment, port: int, number: int) -> None:
         """A connection whose first payload is a Modbus/TCP ADU (MBAP header: protocol 0, its length the
         rest), not an RTU frame (its CRC): refused in one line rather than shown as noise."""
         data = found.data
@@ -188,7 +187,7 @@ class Transport:
         if crc16_reference(data[:-2]) == int.from_bytes(data[-2:], "little"):
             return
         raise SourceError(
-            f"{self.name}: record {self.records}: {found.transport} port {port} carries Modbus/TCP (MBAP header: "
+            f"{self.name}: record {number}: {found.transport} port {port} carries Modbus/TCP (MBAP header: "
             f"transaction {int.from_bytes(data[:2], 'big')}, unit {data[6]}, no CRC), not Modbus RTU frames, "
             "which vw3-decode does not read: tshark with lua/vw3.lua and lua/vw3_modbus.lua names its registers")
 
@@ -196,12 +195,13 @@ class Transport:
         """A TCP segment whose bytes all came before (a retransmission): Wireshark's TCP gives it no
         subdissector, so the plugin never sees it. Sequence numbers compared modulo 2**32."""
         end = (found.seq + found.declared) & 0xFFFFFFFF
-        sent = self.sent.get(found.sender)
+        sender = (found.connection, found.sender)  # (a server's end is every connection's)
+        sent = self.sent.get(sender)
         if sent is not None:
             ahead = (end - sent) & 0xFFFFFFFF
             if ahead == 0 or ahead & 0x80000000:
                 return True
-        self.sent[found.sender] = end
+        self.sent[sender] = end
         return False
 
     def _skip(self, why: str) -> None:
@@ -216,8 +216,9 @@ class Transport:
         passed = sum(count for why, count in self.skipped.items() if why != "other connections")
         if passed and (self.only is None or self.connections[:1] == [self.only]):
             said = ", ".join(f"{count} {why}" for why, count in self.skipped.items() if why != "other connections")
-            warn("skipped packets", f"{self.name}: {passed} packet{'s' if passed != 1 else ''} carried no "
-                 f"Modbus RTU bytes on {self.ports.text()} and were skipped ({said})")
+            packets = f"{passed} packet carried" if passed == 1 else f"{passed} packets carried"
+            warn("skipped packets", f"{self.name}: {packets} no Modbus RTU bytes on {self.ports.text()}: "
+                 f"skipped ({said})")
 
     def refusal(self) -> str:
         """One line: no payload on the RTU ports; the ports that carried some, Modbus/TCP's named."""

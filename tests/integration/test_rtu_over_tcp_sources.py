@@ -21,7 +21,7 @@ ANSWER_1 = ("12 response  Read Holding Registers 8400..8402 (3): 8400=non-existe
             "COP=Cd (command) [#1, 10.0 ms]  CRC ok")
 ANSWER_2 = ("12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent CHCF=protected COP=Cd (command) "
             "[#3, 10.0 ms] [CHCF (8401) became protected: read 3 in frame #2, 16#8000 now]  CRC ok")
-SKIPPED = ("vw3-decode: warning: {name}: 3 packets carried no Modbus RTU bytes on TCP port 4001 and were skipped "
+SKIPPED = ("vw3-decode: warning: {name}: 3 packets carried no Modbus RTU bytes on TCP port 4001: skipped "
            "(1 not IP, 1 TCP without payload, 1 other ports)\n")
 
 
@@ -126,6 +126,26 @@ def test_two_connections_are_two_buses(tmp_path: Path) -> None:
             + lines((1, "0.000000", REQUEST), (2, "0.009000", answer.format("9.0")))), "")
 
 
+def test_standard_input_is_one_stream_and_says_so(tmp_path: Path) -> None:
+    # Standard input cannot be read once per connection: its connections' bytes are one stream, warned; the
+    # server's end being both connections', neither's segment is taken for the other's retransmission.
+    writer = NetWriter(tmp_path / "two.pcap")
+    writer.tcp(True, 40001, 5020, SCENARIO_REQUEST, 1.000)
+    writer.tcp(True, 40002, 5020, SCENARIO_REQUEST, 1.001)
+    writer.tcp(False, 40001, 5020, SCENARIO_1, 1.010)
+    writer.tcp(False, 40002, 5020, SCENARIO_1, 1.011)
+    writer.close()
+    status, out, err = run_cli(["--tcp-port", "5020", *ATV71, "-"], stdin=(tmp_path / "two.pcap").read_bytes())
+    assert (status, err) == (0, "vw3-decode: warning: packets come from several connections on the RTU ports; their "
+                             "bytes are decoded as one stream (vw3-decode FILE decodes each connection as its own "
+                             "bus: save standard input to a file)\n")
+    assert out == lines(
+        (1, "0.000000", REQUEST.replace("(3)", "(3) [no response]")), (2, "0.001000", REQUEST),
+        (3, "0.010000", ANSWER_1.replace("#1, 10.0 ms", "#2, 9.0 ms")),
+        (4, "0.011000", "12 response  Read Holding Registers (3): ?+0=32768 ?+1=3 ?+2=2 [no request] [response "
+                        "without a matching request in the capture]  CRC ok"))
+
+
 def _relinked(pcap: Path, path: Path, linktype: int, strip: int, header: bytes) -> Path:
     """The same packets with their Ethernet header (`strip` bytes) replaced by another link's `header`."""
     data = pcap.read_bytes()
@@ -190,7 +210,7 @@ def test_a_retransmitted_segment_is_read_once_as_the_plugin_reads_it(tmp_path: P
     pcap = tmp_path / "again.pcap"
     assert run_cli(["--tcp-port", "4001", *ATV71, str(pcap)]) == (
         0, lines((1, "0.000000", REQUEST), (2, "0.210000", ANSWER_1.replace("10.0 ms", "210.0 ms"))),
-        f"vw3-decode: warning: {pcap}: 1 packet carried no Modbus RTU bytes on TCP port 4001 and were skipped "
+        f"vw3-decode: warning: {pcap}: 1 packet carried no Modbus RTU bytes on TCP port 4001: skipped "
         "(1 TCP retransmissions)\n")
     done = run_tshark(pcap, "-o", "vw3.tcp_port:4001", "-T", "fields", "-E", "separator=|", "-e", "frame.number",
                       "-e", "vw3.kind", "-e", "vw3.request_frame", "-e", "vw3.response_time")
