@@ -6,6 +6,7 @@ line naming the ports and the options."""
 from __future__ import annotations
 
 import json
+import random
 import struct
 import subprocess
 from pathlib import Path
@@ -215,3 +216,37 @@ def test_a_retransmitted_segment_is_read_once_as_the_plugin_reads_it(tmp_path: P
     done = run_tshark(pcap, "-o", "vw3.tcp_port:4001", "-T", "fields", "-E", "separator=|", "-e", "frame.number",
                       "-e", "vw3.kind", "-e", "vw3.request_frame", "-e", "vw3.response_time")
     assert done.stdout.splitlines() == ["1|1||", "2|||", "3|2|1|0.210000000"]
+
+
+def test_a_random_session_cut_into_segments_reads_as_the_plugin_reads_it(tmp_path: Path) -> None:
+    # Every function code, exceptions, noise and bad CRCs (lua_session), each frame cut into segments of 1 to 40
+    # bytes, with empty segments and DNS datagrams between: every item, its fields, registers, pairing (by the
+    # packet it is shown in), warnings and notes as the plugin shows them (lua_compare.compare).
+    from lua_compare import compare
+    from lua_harness import lua_items, place_items
+    from lua_session import SessionBuilder
+
+    rng = random.Random(13)
+    writer = NetWriter(tmp_path / "cut.pcap")
+    lengths = []  # each packet's payload on the RTU port (0: none), to place vw3-decode's items in packets
+    for index, (data, time) in enumerate(SessionBuilder(seed=13).session(120)):
+        position = 0
+        while position < len(data):
+            piece = data[position : position + rng.randint(1, 40)]
+            writer.tcp(index % 2 == 0, 40001, 5020, piece, time + position * 0.0001)
+            lengths.append(len(piece))
+            position += len(piece)
+            if rng.random() < 0.1:
+                writer.tcp(index % 2 == 1, 40001, 5020, b"", time + position * 0.0001)
+                writer.udp(True, 5353, 53, bytes(12), time + position * 0.0001)
+                lengths += [0, 0]
+    writer.close()
+    status, out, err = run_cli(["--tcp-port", "5020", "--json", str(tmp_path / "cut.pcap")])
+    pairs = lengths.count(0) // 2
+    assert (status, err) == (0, f"vw3-decode: warning: {tmp_path / 'cut.pcap'}: {2 * pairs} packets carried no Modbus "
+                             f"RTU bytes on TCP port 5020: skipped ({pairs} TCP without payload, {pairs} other ports)\n")
+    ours = place_items([json.loads(line) for line in out.splitlines()], lengths)
+    theirs, _, _ = lua_items(tmp_path / "cut.pcap", "-o", "vw3.tcp_port:5020", header=54)
+    assert len(ours) > 200
+    differences = compare(ours, theirs)
+    assert not differences, "\n".join(differences[:40])
