@@ -250,3 +250,11 @@ def test_a_random_session_cut_into_segments_reads_as_the_plugin_reads_it(tmp_pat
     assert len(ours) > 200
     differences = compare(ours, theirs)
     assert not differences, "\n".join(differences[:40])
+
+
+def test_a_port_out_of_range_is_refused(tmp_path: Path) -> None:
+    pcap = gateway(tmp_path / "gateway.pcap")
+    assert run_cli(["--tcp-port", "70000", str(pcap)]) == (
+        2, "", "vw3-decode: argument --tcp-port: '70000' is not a port (0..65535) (see vw3-decode --help)\n")
+    assert run_cli(["--udp-port", "x", str(pcap)]) == (
+        2, "", "vw3-decode: argument --udp-port: 'x' is not a port (0..65535) (see vw3-decode --help)\n")
