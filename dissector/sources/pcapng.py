@@ -284,8 +284,8 @@ class _Reader:
         outside = outside_time_range(time.ns, interface.offset) if not epoch or self.record == 0 else None
         if outside is not None:
             raise SourceError(f"{inp.name}: packet block at byte {start}: {outside}")
-        if not epoch and interface.linktype != LINKTYPE_RTAC_SERIAL:  # (an RTAC record's time is in its bytes)
-            self.last_time = time
+        if not epoch and interface.linktype != LINKTYPE_RTAC_SERIAL and interface.linktype not in NETWORK_LINKTYPES:
+            self.last_time = time  # (an RTAC record's time is in its bytes; a network packet's if it is the bus's)
         yield from self.held.release(within_day_zero(epoch, seconds))
         chunks = self._data(captured, original, time, interface, body_length - 20, start)
         if (epoch and self.record == 0 and interface.linktype != LINKTYPE_RTAC_SERIAL
@@ -356,6 +356,8 @@ class _Reader:
             self.inp, captured, time, interface.linktype, self.record, self.record_log, self.chunk_size, rtac,
             original, self.transport if network else None,
         ):
+            if network and time is not None:  # (the plugin sees it: it was recording then)
+                self.last_time = time
             if last is not None:
                 yield last
             last = chunk

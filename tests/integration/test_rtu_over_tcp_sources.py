@@ -258,3 +258,19 @@ def test_a_port_out_of_range_is_refused(tmp_path: Path) -> None:
         2, "", "vw3-decode: argument --tcp-port: '70000' is not a port (0..65535) (see vw3-decode --help)\n")
     assert run_cli(["--udp-port", "x", str(pcap)]) == (
         2, "", "vw3-decode: argument --udp-port: 'x' is not a port (0..65535) (see vw3-decode --help)\n")
+
+
+def test_packets_off_the_ports_do_not_extend_the_capture(tmp_path: Path) -> None:
+    # A request, then a DNS datagram 2 s later: the plugin never sees the datagram, so the capture of the bus ends
+    # with the request (not known whether it was answered), not 2 s after it (no response); pcap and pcapng alike.
+    writer = NetWriter(tmp_path / "end.pcap")
+    writer.tcp(True, 40001, 4001, SCENARIO_REQUEST, 1.0)
+    writer.udp(True, 5353, 53, bytes(12), 3.0)
+    writer.close()
+    subprocess.run(["editcap", "-F", "pcapng", str(tmp_path / "end.pcap"), str(tmp_path / "end.pcapng")], check=True)
+    ends = "the capture ends before any response: not known whether it was answered"
+    for path in (tmp_path / "end.pcap", tmp_path / "end.pcapng"):
+        assert run_cli(["--tcp-port", "4001", *ATV71, str(path)])[1] == lines(
+            (1, "0.000000", REQUEST.replace("(3)", f"(3) [{ends}]"))), path
+    done = run_tshark(tmp_path / "end.pcap", "-o", "vw3.tcp_port:4001", "-T", "fields", "-e", "vw3.note")
+    assert done.stdout.splitlines() == [ends, ""]
