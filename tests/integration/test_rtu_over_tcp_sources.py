@@ -11,6 +11,7 @@ import struct
 import subprocess
 from pathlib import Path
 
+import pytest
 from helpers import run_cli
 from lua_harness import lua_errors, run_tshark
 from lua_net import NetWriter
@@ -274,3 +275,16 @@ def test_packets_off_the_ports_do_not_extend_the_capture(tmp_path: Path) -> None
             (1, "0.000000", REQUEST.replace("(3)", f"(3) [{ends}]"))), path
     done = run_tshark(tmp_path / "end.pcap", "-o", "vw3.tcp_port:4001", "-T", "fields", "-e", "vw3.note")
     assert done.stdout.splitlines() == [ends, ""]
+
+
+def test_parquet_takes_the_ports_and_a_bus_per_connection(tmp_path: Path) -> None:
+    pytest.importorskip("pyarrow")
+    writer = NetWriter(tmp_path / "two.pcap")
+    for port, time in ((40001, 1.0), (40002, 1.001)):
+        writer.tcp(True, port, 5020, SCENARIO_REQUEST, time)
+        writer.tcp(False, port, 5020, SCENARIO_1, time + 0.01)
+    writer.close()
+    pcap = tmp_path / "two.pcap"
+    assert run_cli(["--tcp-port", "5020", "--parquet", str(tmp_path / "data"), str(pcap)]) == (0, (
+        f"{pcap}: TCP 10.0.0.1:40001 - 10.0.0.2:5020: 2 frames, 3 registers, 0 events\n"
+        f"{pcap}: TCP 10.0.0.1:40002 - 10.0.0.2:5020: 2 frames, 3 registers, 0 events\n"), "")
