@@ -288,3 +288,22 @@ def test_parquet_takes_the_ports_and_a_bus_per_connection(tmp_path: Path) -> Non
     assert run_cli(["--tcp-port", "5020", "--parquet", str(tmp_path / "data"), str(pcap)]) == (0, (
         f"{pcap}: TCP 10.0.0.1:40001 - 10.0.0.2:5020: 2 frames, 3 registers, 0 events\n"
         f"{pcap}: TCP 10.0.0.1:40002 - 10.0.0.2:5020: 2 frames, 3 registers, 0 events\n"), "")
+
+
+def test_ipv6_over_bsd_loopback(tmp_path: Path) -> None:
+    # Linktype 0 (BSD loopback: the address family in the writer's byte order, 30 for IPv6 on macOS), IPv6, TCP.
+    from dissector.render.pcapwriter import PcapWriter
+
+    def packet(to_server: bool, payload: bytes, seq: int) -> bytes:
+        ports = (40001, 4001) if to_server else (4001, 40001)
+        tcp = struct.pack("!HHIIBBHHH", *ports, seq, 0, 5 << 4, 0x18, 8192, 0, 0) + payload
+        ends = (bytes(15) + b"\x01", bytes(15) + b"\x02")
+        ip = struct.pack("!IHBB", 6 << 28, len(tcp), 6, 64) + b"".join(ends if to_server else ends[::-1])
+        return struct.pack("<I", 30) + ip + tcp
+
+    with (tmp_path / "lo.pcap").open("wb") as stream:
+        writer = PcapWriter(stream, linktype=0)
+        writer.write(packet(True, SCENARIO_REQUEST, 1), 1.0)
+        writer.write(packet(False, SCENARIO_1, 1), 1.01)
+    assert run_cli(["--tcp-port", "4001", *ATV71, str(tmp_path / "lo.pcap")]) == (
+        0, lines((1, "0.000000", REQUEST), (2, "0.010000", ANSWER_1)), "")
