@@ -12,12 +12,15 @@ from typing import BinaryIO
 
 from dissector.errors import SourceError
 from dissector.model import Chunk, Stamp
+from dissector.sources.ethernet import NETWORK_LINKTYPES, Transport  # (RTU over TCP/UDP)
 
 LINKTYPE_USER0 = 147
 LINKTYPE_RTAC_SERIAL = 250
-SUPPORTED_LINKTYPES = "147 (USER0) and 250 (RTAC serial)"
+SUPPORTED_LINKTYPES = ("147 (USER0) and 250 (RTAC serial); Modbus RTU over TCP/UDP from 0, 1, 101, 113, 228, 229 "
+                       "and 276 (network links)")
 # Names for the link types people most often feed us by mistake, for the error message.
-LINKTYPE_NAMES = {0: "NULL", 1: "Ethernet", 101: "raw IP", 113: "Linux cooked", 228: "IPv4", 229: "IPv6"}
+LINKTYPE_NAMES = {0: "NULL", 1: "Ethernet", 101: "raw IP", 113: "Linux cooked", 228: "IPv4", 229: "IPv6",
+                  276: "Linux cooked v2"}
 
 RTAC_HEADER = struct.Struct(">IIBBH")  # seconds, microseconds, event type, control lines, footer
 # Event types from Wireshark's packet-rtacser.c that mean bytes on the line were lost or damaged.
@@ -173,7 +176,7 @@ def linktype_error(name: str, linktype: int, where: str = "") -> SourceError:
 
 
 def check_linktype(name: str, linktype: int, where: str = "") -> None:
-    if linktype not in (LINKTYPE_USER0, LINKTYPE_RTAC_SERIAL):
+    if linktype not in (LINKTYPE_USER0, LINKTYPE_RTAC_SERIAL) and linktype not in NETWORK_LINKTYPES:
         raise linktype_error(name, linktype, where)
 
 
@@ -236,6 +239,7 @@ def record_chunks(
     chunk_size: int,
     stamped: Callable[[Stamp], None] | None = None,
     original: int = 0,
+    transport: Transport | None = None,
 ) -> Iterator[Chunk]:
     """The serial bytes of one pcap/pcapng record of `length` captured bytes.
 
@@ -247,7 +251,12 @@ def record_chunks(
     captured in part (`original`, its length on the line, more than `length`) is one PartChunk, all its bytes
     (before, a record longer than a chunk was cut after its last chunk alone, the others framed as whole bytes),
     none too (0 of its 9 bytes: bytes were lost there all the same; before, no chunk and no cut).
+    A network link's record (`transport`: sources/ethernet.py) is its TCP/UDP payload when on the RTU ports,
+    one chunk (a record is at most MAX_PACKET bytes), else nothing.
     """
+    if transport is not None and linktype not in (LINKTYPE_USER0, LINKTYPE_RTAC_SERIAL):
+        yield from _payload_chunks(inp, length, time, linktype, record, log, transport)
+        return
     remaining = length
     first = True
     header_size = 0
@@ -284,3 +293,27 @@ def record_chunks(
             return
     if part is not None and not (first and linktype == LINKTYPE_RTAC_SERIAL):  # (an RTAC's header: read above)
         yield PartChunk(bytes(part), time, True, record, (), length - header_size, original - header_size)
+
+
+def _payload_chunks(inp: Input, length: int, time: Stamp | None, linktype: int, record: int, log: WarningLog,
+                    transport: Transport) -> Iterator[Chunk]:
+    """The bus's bytes of a network record (record_chunks): its payload on the RTU ports, one chunk; a
+    payload captured in part a PartChunk (the stream's cut: the bytes after it were lost)."""
+    data = inp.read(length)
+    if len(data) < length:
+        log.warn("truncated input", f"record {record} is cut short: {len(data)} of {length} bytes "
+                 "(the capture ends inside it); the bytes that are there are decoded")
+    known = len(transport.connections)
+    found = transport.take(linktype, data, record)
+    if known == 1 and len(transport.connections) == 2 and transport.only is None:
+        # (a file is read once per connection, each its own bus: sources/interfaces.py; a pipe cannot be)
+        log.warn("connections", "packets come from several connections on the RTU ports; their bytes are decoded "
+                 "as one stream (vw3-decode FILE decodes each connection as its own bus: save standard input to a file)")
+    if found is None:
+        return
+    if found.declared > len(found.data):
+        log.warn("records captured in part",
+                 f"record {record}: only {len(found.data)} of its {found.declared} payload bytes were captured")
+        yield PartChunk(found.data, time, True, record, (), len(found.data), found.declared)
+    else:
+        yield Chunk(found.data, time, True)

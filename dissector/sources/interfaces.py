@@ -7,15 +7,22 @@ A regular file is read once per interface (sources/pcapng.py `only`: the other i
 passed over), so memory stays bounded whatever the file's size; which interfaces carry packets is found
 first by walking the block headers, seeking over the bodies. Standard input cannot be read twice: it
 stays one stream, with the reader's warning saying so.
+
+A pcap or pcapng of a network link carrying Modbus RTU over TCP/UDP (sources/ethernet.py) with several
+connections on the RTU ports is read once per connection, each its own bus as the plugin keeps each
+connection's stream (two masters polling one gateway: each answer paired with its own connection's request).
 """
 from __future__ import annotations
 
+import functools
 import os
 import stat
 import struct
 from dataclasses import dataclass
 
 from dissector.sources.common import Input, SourceError, WarningLog
+from dissector.sources.ethernet import Connection, RtuPorts
+from dissector.sources.pcap import PcapRecords, is_pcap, read_pcap
 from dissector.sources.pcapng import (
     EPB,
     IDB,
@@ -24,6 +31,7 @@ from dissector.sources.pcapng import (
     SHB_MAGIC,
     SPB,
     Interface,
+    LINKTYPE_USER0,
     _interface,
     read_pcapng,
     serial,
@@ -37,22 +45,49 @@ class PacketInterface:
     ordinal: int  # in the order the file describes its interfaces, across sections (from 0)
     interface: Interface
     first: bool = False  # the file's first bus: it warns of the interfaces carrying no serial bytes
+    connection: Connection | None = None  # RTU over TCP/UDP: the one connection of a network capture read
 
     def label(self) -> str:
         """The interface as a title names it: its if_name, else its description, else its number."""
         return self.interface.name or self.interface.description or f"interface {self.ordinal}"
 
 
-def packet_interfaces(path: str) -> list[PacketInterface]:
-    """The interfaces of a regular pcapng file that carry packets, in the file's order; [] for anything
-    else (another format, standard input, a file that cannot say: the one-stream reader reports it)."""
+def packet_interfaces(path: str, ports: RtuPorts = RtuPorts()) -> list[PacketInterface]:
+    """The interfaces of a regular pcapng file that carry packets, in the file's order, or the connections on
+    the RTU `ports` of a pcap or pcapng of a network link (connections); [] for anything else (another
+    format, standard input, a file that cannot say: the one-stream reader reports it)."""
     try:
         if not stat.S_ISREG(os.stat(path).st_mode):
             return []
         with open(path, "rb", buffering=0) as stream:
-            return _walk(stream, os.fstat(stream.fileno()).st_size, path)
+            buses = _walk(stream, os.fstat(stream.fileno()).st_size, path)
+        return buses or (connections(path, ports) if ports != RtuPorts() else [])
     except (OSError, struct.error, ValueError, SourceError):
         return []
+
+
+def connections(path: str, ports: RtuPorts) -> list[PacketInterface]:
+    """The connections on the RTU ports of a pcap or pcapng file of a network link, in order of appearance,
+    each a bus (titled by its transport and ends), when there are several; else []. The file is read once
+    for it (records only: no decode), once for its size and time (the buses' Sources ask again)."""
+    status = os.stat(path)
+    return list(_connections(path, status.st_size, status.st_mtime_ns, ports))
+
+
+@functools.lru_cache(maxsize=8)
+def _connections(path: str, _size: int, _mtime: int, ports: RtuPorts) -> tuple[PacketInterface, ...]:
+    with open(path, "rb") as stream:
+        chunks = _network_chunks(stream, path, WarningLog(), 1 << 16, ports, None)
+        if isinstance(chunks, PcapRecords) and chunks.transport is None:  # (a serial pcap is not read here)
+            return ()
+        for _chunk in chunks:
+            pass
+        transport, units = chunks.transport, chunks.time_units or 1_000_000
+    if transport is None or len(transport.connections) < 2:
+        return ()
+    return tuple(PacketInterface(ordinal, Interface(LINKTYPE_USER0, 0, units, name=f"{kind} {a} - {b}"),
+                                 first=ordinal == 0, connection=(kind, a, b))
+                 for ordinal, (kind, a, b) in enumerate(transport.connections))
 
 
 def _walk(stream, size: int, path: str) -> list[PacketInterface]:  # type: ignore[no-untyped-def]
@@ -109,25 +144,47 @@ def _walk(stream, size: int, path: str) -> list[PacketInterface]:  # type: ignor
 
 def open_interface(  # type: ignore[no-untyped-def]
     path: str, ordinal: int, mode: str | None, chunk_size: int = 65536, tell_skipped: bool = True,
-    where: str = "",
+    where: str = "", ports: RtuPorts = RtuPorts(),
 ):
     """A Source (sources/reader.py) of the packets of one interface of the pcapng file `path`
     (`tell_skipped`: this bus warns of the interfaces carrying no serial bytes; one bus of the file does;
-    `where`: said before its warnings that number a record, the bus's title)."""
+    `where`: said before its warnings that number a record, the bus's title); of a network capture's
+    connection on the RTU `ports` (the `ordinal`-th of packet_interfaces')."""
     from dissector.sources.reader import MIN_CHUNK, Source, sampled_mode
 
     chunk_size = max(chunk_size, MIN_CHUNK)
+    connection = None
+    if ports != RtuPorts():
+        buses = packet_interfaces(path, ports)
+        connection = buses[ordinal].connection if ordinal < len(buses) else None
     stream = open(path, "rb")
     try:
         log = WarningLog()
-        chunks = read_pcapng(Input(stream, path), log, chunk_size, only=ordinal, tell_skipped=tell_skipped,
-                             where=where)
+        if connection is not None:
+            chunks = _network_chunks(stream, path, log, chunk_size, ports, connection)
+            form = "pcap" if isinstance(chunks, PcapRecords) else "pcapng"
+        else:
+            chunks = read_pcapng(Input(stream, path), log, chunk_size, only=ordinal, tell_skipped=tell_skipped,
+                                 where=where)
+            form = "pcapng"
         head: list = []
         if mode is None:  # as reader.py decides it: the first payload bytes, replayed first
             mode, head = sampled_mode(chunks)
-        source = Source(chunks, head, "pcapng", mode, path, log, stream.close)
+        source = Source(chunks, head, form, mode, path, log, stream.close)
         source.streaming = False
         return source
     except BaseException:
         stream.close()
         raise
+
+
+def _network_chunks(stream, path: str, log: WarningLog, chunk_size: int, ports: RtuPorts,  # type: ignore[no-untyped-def]
+                    connection: Connection | None):
+    """The chunks of a pcap or pcapng read for its network link's RTU payloads (`connection`: one's alone);
+    their `transport` (sources/ethernet.py): a pcap's from its header, a pcapng's once a network packet is read;
+    None for a serial capture."""
+    head = stream.read(4)
+    stream.seek(0)
+    if is_pcap(head):
+        return read_pcap(Input(stream, path), log, chunk_size, ports, connection)
+    return read_pcapng(Input(stream, path), log, chunk_size, ports=ports, connection=connection)

@@ -3,7 +3,8 @@ modified pcap of Alexey Kuznetzov's patched libpcap (editcap -F modpcap, magic a
 
 A record is one read of the serial line (one frame for most sniffers, any run of bytes for others):
 it becomes one Chunk with the record's time and boundary=True. Only the link types that carry raw
-serial bytes are accepted (common.SUPPORTED_LINKTYPES); anything else is an error, not noise.
+serial bytes are accepted (common.SUPPORTED_LINKTYPES), and network links whose TCP/UDP payloads on the RTU
+ports are the bus's (sources/ethernet.py); anything else is an error, not noise.
 """
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from collections.abc import Iterator
 from dataclasses import replace
 
 from dissector.model import Chunk, Stamp
+from dissector.sources.ethernet import NETWORK_LINKTYPES, RtuPorts, Transport
 from dissector.sources.common import (
     LINKTYPE_RTAC_SERIAL,
     Input,
@@ -47,8 +49,10 @@ def is_pcap(head: bytes) -> bool:
     return head[:4] in MAGICS or head[:4] in MODIFIED_MAGICS
 
 
-def read_pcap(inp: Input, log: WarningLog, chunk_size: int) -> PcapRecords:
-    return PcapRecords(inp, log, chunk_size)
+def read_pcap(inp: Input, log: WarningLog, chunk_size: int, ports: RtuPorts = RtuPorts(),
+              only: tuple[str, str, str] | None = None) -> PcapRecords:
+    """`ports`: a network link's RTU ports; `only`: the one connection read (sources/ethernet.py)."""
+    return PcapRecords(inp, log, chunk_size, ports, only)
 
 
 class PcapRecords:
@@ -56,7 +60,10 @@ class PcapRecords:
     `recorded_until`, once read: the time of its last timed record, empty or not (None: none), when the tap
     was last recording (Dissector's `recorded`; the bulk reader sets it for the records it reads)."""
 
-    def __init__(self, inp: Input, log: WarningLog, chunk_size: int) -> None:
+    def __init__(self, inp: Input, log: WarningLog, chunk_size: int, ports: RtuPorts = RtuPorts(),
+                 only: tuple[str, str, str] | None = None) -> None:
+        self.ports, self.only = ports, only
+        self.transport: Transport | None = None  # a network link's (RTU over TCP/UDP)
         self.inp = inp
         self.log = log
         self.chunk_size = chunk_size
@@ -101,6 +108,8 @@ class PcapRecords:
         # The upper bits of the link-type field hold FCS information, irrelevant to a serial line.
         self.linktype = network & 0xFFFF
         check_linktype(inp.name, self.linktype)
+        if self.linktype in NETWORK_LINKTYPES:
+            self.transport = Transport(inp.name, self.ports, self.only)
         # (read ahead from a file alone, not a live feed: wiretap reads a variant's file only then, "that type
         # of pcap file can't be read from a pipe")
         if self.units == 1_000_000 and rereadable(inp):
@@ -146,6 +155,8 @@ class PcapRecords:
             head = inp.read(record_header.size)
             if not head:
                 yield from held.release(False)
+                if self.transport is not None and self.record:
+                    self.transport.finish(log.warn)
                 if self.record == 0:  # (tshark shows nothing: say why the output is empty)
                     log.warn("empty", f"{inp.name}: the capture holds no records")
                 return
@@ -162,7 +173,7 @@ class PcapRecords:
             corrupt = fraction >= self.units
             if corrupt:
                 log.warn(CORRUPT_STAMPS, f"record {self.record}: {fraction_error(fraction, self.units)}")
-            if captured < original:
+            if captured < original and self.transport is None:  # (a network record's: its payload's, common.py)
                 log.warn(
                     "records captured in part",
                     f"record {self.record}: only {captured} of its {original} bytes were captured",
@@ -174,6 +185,12 @@ class PcapRecords:
                     f"({self.snaplen}): a damaged file?",
                 )
             time = None if corrupt else Stamp.from_parts(seconds, fraction, self.units)
+            if self.transport is not None:  # (a network link: the RTU ports' payloads alone, as records)
+                for chunk in record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size,
+                                           original=original, transport=self.transport):
+                    self.recorded_until = time if time is not None else self.recorded_until
+                    yield chunk
+                continue
             chunks = record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size,
                                    self._stamped if self.linktype == LINKTYPE_RTAC_SERIAL else None, original)
             epoch = not (seconds or fraction)

@@ -32,6 +32,7 @@ from dissector.sources.common import (
     outside_time_range,
     record_chunks,
 )
+from dissector.sources.ethernet import NETWORK_LINKTYPES, RtuPorts, Transport
 from dissector.sources.pcap import EpochRecord, within_day_zero
 from dissector.sources.trail import own_comment
 
@@ -98,8 +99,12 @@ class _Reader:
     order the file describes them, across sections); the others' packets are passed over."""
 
     def __init__(self, inp: Input, log: WarningLog, chunk_size: int, first_interface: bool = False,
-                 only: int | None = None, tell_skipped: bool = True, where: str = "") -> None:
+                 only: int | None = None, tell_skipped: bool = True, where: str = "",
+                 ports: RtuPorts = RtuPorts(), connection: tuple[str, str, str] | None = None) -> None:
         self.inp = inp
+        # A network interface's packets: the RTU ports' payloads (sources/ethernet.py; `connection`: its one read)
+        self.transport = Transport(inp.name, ports, connection)
+        self.networked = False  # a network interface's packet was read
         # The warnings that number a record: `where` (the bus's title, `file: if_name`) first when the file is
         # read once per interface, each numbering its own records ("record 2" alone sent the reader to the
         # first bus's, or to tshark's frame 2).
@@ -279,8 +284,8 @@ class _Reader:
         outside = outside_time_range(time.ns, interface.offset) if not epoch or self.record == 0 else None
         if outside is not None:
             raise SourceError(f"{inp.name}: packet block at byte {start}: {outside}")
-        if not epoch and interface.linktype != LINKTYPE_RTAC_SERIAL:  # (an RTAC record's time is in its bytes)
-            self.last_time = time
+        if not epoch and interface.linktype != LINKTYPE_RTAC_SERIAL and interface.linktype not in NETWORK_LINKTYPES:
+            self.last_time = time  # (an RTAC record's time is in its bytes; a network packet's if it is the bus's)
         yield from self.held.release(within_day_zero(epoch, seconds))
         chunks = self._data(captured, original, time, interface, body_length - 20, start)
         if (epoch and self.record == 0 and interface.linktype != LINKTYPE_RTAC_SERIAL
@@ -337,7 +342,7 @@ class _Reader:
         (EPB, OPB; not SPB), and the packet comments among them go on its last chunk (held back until
         they are read: they come after the data)."""
         self.record += 1
-        if captured < original:
+        if captured < original and interface.linktype not in NETWORK_LINKTYPES:  # (a payload's: common.py)
             self.record_log.warn(
                 "records captured in part",
                 f"record {self.record}: only {captured} of its {original} bytes were captured",
@@ -345,10 +350,14 @@ class _Reader:
         before = self.inp.position
         last: Chunk | None = None
         rtac = self._stamped if interface.linktype == LINKTYPE_RTAC_SERIAL else None
+        network = interface.linktype in NETWORK_LINKTYPES
+        self.networked = self.networked or network
         for chunk in record_chunks(
             self.inp, captured, time, interface.linktype, self.record, self.record_log, self.chunk_size, rtac,
-            original,
+            original, self.transport if network else None,
         ):
+            if network and time is not None:  # (the plugin sees it: it was recording then)
+                self.last_time = time
             if last is not None:
                 yield last
             last = chunk
@@ -467,6 +476,11 @@ class PcapngChunks:
         return self._reader.last_time
 
     @property
+    def transport(self) -> Transport | None:
+        """Its network interfaces' reading (sources/ethernet.py), once one's packet is read; else None."""
+        return self._reader.transport if self._reader.networked else None
+
+    @property
     def time_units(self) -> int | None:
         """The finest time units a second (if_tsresol) of the interfaces described so far, of the one read
         (`only`) if described; None before any (render/timefmt.py column_digits)."""
@@ -482,6 +496,8 @@ class PcapngChunks:
             pass
         yield from self._reader.held.release(False)
         reader = self._reader
+        if reader.networked:
+            reader.transport.finish(reader.log.warn)
         if reader.record == 0 and not reader.skipped and reader.only is None:
             # (tshark shows nothing: say why the output is empty)
             reader.log.warn("empty", f"{reader.inp.name}: the capture holds no packets")
@@ -490,7 +506,10 @@ class PcapngChunks:
 
 
 def read_pcapng(inp: Input, log: WarningLog, chunk_size: int, only: int | None = None,
-                tell_skipped: bool = True, where: str = "") -> PcapngChunks:
+                tell_skipped: bool = True, where: str = "", ports: RtuPorts = RtuPorts(),
+                connection: tuple[str, str, str] | None = None) -> PcapngChunks:
     """The chunks of a pcapng's packets (`only`: of that interface alone, by its ordinal; `tell_skipped`:
-    warn of the interfaces carrying no serial bytes; `where`: said before a warning that numbers a record)."""
-    return PcapngChunks(_Reader(inp, log, chunk_size, only=only, tell_skipped=tell_skipped, where=where))
+    warn of the interfaces carrying no serial bytes; `where`: said before a warning that numbers a record;
+    `ports`, `connection`: a network interface's RTU ports and the one connection read, sources/ethernet.py)."""
+    return PcapngChunks(_Reader(inp, log, chunk_size, only=only, tell_skipped=tell_skipped, where=where,
+                                ports=ports, connection=connection))

@@ -26,6 +26,7 @@ from dissector.protocol.ascii import MODE_REACH, MODE_SAMPLE, sample_mode  # (MO
 from dissector.sources.common import Input, SourceError, WarningLog, rereadable
 from dissector.sources.compressed import HEADER_BYTES, Decompressed, compression
 from dissector.sources.dumps import dump_tool, read_dump, refuse_words, word_dump
+from dissector.sources.ethernet import RtuPorts
 from dissector.sources.encoding import Encoding, decoded, marked, text_input
 from dissector.sources.hexdump import CONTROL, characters, looks_like_hexdump, read_hexdump
 from dissector.sources.libmodbus import looks_like_libmodbus, read_libmodbus
@@ -291,8 +292,10 @@ def open_source(
     chunk_size: int = 65536,
     mode: str | None = None,
     stdin: BinaryIO | None = None,
+    ports: RtuPorts = RtuPorts(),
 ) -> Source:
-    """Open a capture. `fmt`: one of FORMATS (decimal: a hex dump's lines in decimal); `mode`: rtu or ascii.
+    """Open a capture. `fmt`: one of FORMATS (decimal: a hex dump's lines in decimal); `mode`: rtu or ascii;
+    `ports`: the TCP/UDP ports whose payloads are Modbus RTU in a pcap or pcapng of a network link.
 
     Raises SourceError with a one-line message for anything that cannot be read.
     """
@@ -304,7 +307,7 @@ def open_source(
     stream, name, owned = _open(path, stdin)
     closer = stream.close if owned else (lambda: None)
     try:
-        return _start(stream, name, fmt, mode, chunk_size, closer)
+        return _start(stream, name, fmt, mode, chunk_size, closer, ports)
     except BaseException:
         closer()
         raise
@@ -327,7 +330,7 @@ def sampled_mode(chunks: Iterator[Chunk]) -> tuple[str, list[Chunk]]:
 
 def _start(
     stream: BinaryIO, name: str, fmt: str | None, mode: str | None, chunk_size: int,
-    closer: Callable[[], None],
+    closer: Callable[[], None], ports: RtuPorts = RtuPorts(),
 ) -> Source:
     log = WarningLog()
     sample, complete = _sniff_or_fail(stream, name)
@@ -356,6 +359,10 @@ def _start(
         inp = text_input(inp, encoding)
     if fmt in NOTATIONS:
         chunks = read_hexdump(inp, log, chunk_size, Notation(NOTATIONS[fmt], fixed=True))
+    elif format == "pcap":
+        chunks = read_pcap(inp, log, chunk_size, ports)
+    elif format == "pcapng":
+        chunks = read_pcapng(inp, log, chunk_size, ports=ports)
     else:
         chunks = READERS[format](inp, log, chunk_size)
     head: list[Chunk] = []

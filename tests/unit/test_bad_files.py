@@ -115,8 +115,12 @@ def test_empty_file_is_no_frames(tmp_path: Path) -> None:
         (b"garbage, not a capture", "pcap", "not a pcap file (magic 67617262)"),
         (b"", "pcap", "not a pcap file (magic missing)"),
         (pcap([REQUEST])[:10], None, "truncated pcap file header (10 of 24 bytes)"),
-        (pcap([REQUEST], linktype=1), None,
-         "linktype 1 (Ethernet) carries no serial bytes; supported: 147 (USER0) and 250 (RTAC serial)"),
+        (pcap([REQUEST], linktype=1), None,  # (RTU over TCP/UDP is read on the ports given: none here)
+         "Ethernet (linktype 1): no TCP or UDP payload on the Modbus RTU ports (none given: --tcp-port and "
+         "--udp-port, as the plugin's vw3.tcp_port and vw3.udp_port preferences, set them); its 1 packet: 1 not IP"),
+        (pcap([REQUEST], linktype=105), None,
+         "linktype 105 (not a serial line) carries no serial bytes; supported: 147 (USER0) and 250 (RTAC serial); "
+         "Modbus RTU over TCP/UDP from 0, 1, 101, 113, 228, 229 and 276 (network links)"),
         (pcap([REQUEST]), "pcapng", "not a pcapng file (no section header block)"),
         (b"\x28\xb5\x2f\xfdrest", None, "compressed input (zstd): decompress it first (`zstd -d FILE`)"),
     ],

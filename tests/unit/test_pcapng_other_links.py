@@ -76,8 +76,11 @@ def test_no_serial_interface_is_refused(tmp_path: Path, monkeypatch: pytest.Monk
     path.write_bytes(_pcapng([1], [(0, 0, ETHERNET)]))
     status, out, err = run_cli([str(path)])
     assert (status, out) == (2, "")
+    # (an Ethernet capture is read for Modbus RTU over TCP/UDP on the ports given: test_rtu_over_tcp_sources.py)
     assert err.splitlines() == [
-        f"vw3-decode: {path}: {NOT_READ}; supported: 147 (USER0) and 250 (RTAC serial)"]
+        f"vw3-decode: {path}: Ethernet (linktype 1): no TCP or UDP payload on the Modbus RTU ports (none given: "
+        "--tcp-port and --udp-port, as the plugin's vw3.tcp_port and vw3.udp_port preferences, set them); "
+        "its 1 packet: 1 fragmented IP"]
 
 
 def test_serial_interface_names_the_copy(tmp_path: Path) -> None:

@@ -175,9 +175,10 @@ def test_pcap_other_linktype_is_a_clear_error(tmp_path: Path) -> None:
     path = write(tmp_path, "eth.pcap", pcap([(T0, 0, REQUEST)], linktype=1))
     with pytest.raises(SourceError) as error:
         open_source(path)
-    assert str(error.value) == (
-        f"{path}: linktype 1 (Ethernet) carries no serial bytes; "
-        "supported: 147 (USER0) and 250 (RTAC serial)")
+    assert str(error.value) == (  # (read for Modbus RTU over TCP/UDP: test_rtu_over_tcp_sources.py)
+        f"{path}: Ethernet (linktype 1): no TCP or UDP payload on the Modbus RTU ports (none given: --tcp-port "
+        "and --udp-port, as the plugin's vw3.tcp_port and vw3.udp_port preferences, set them); its 1 packet: "
+        "1 not IP")
 
 
 def test_truncated_last_record_is_delivered_with_a_warning(tmp_path: Path) -> None:
@@ -259,7 +260,8 @@ def test_pcapng_big_endian_tsresol_tsoffset_and_rtac(tmp_path: Path) -> None:
 def test_pcapng_interface_with_other_linktype_is_an_error(tmp_path: Path) -> None:
     o = "<"
     path = write(tmp_path, "c", shb(o) + idb(o, 1) + epb(o, 0, 0, REQUEST))
-    with pytest.raises(SourceError, match=r"interface 0: linktype 1 \(Ethernet\) carries no serial bytes"):
+    with pytest.raises(SourceError, match=r": Ethernet \(linktype 1\): no TCP or UDP payload on the Modbus RTU "
+                       r"ports \(none given: .*; its 1 packet: 1 not IP$"):
         list(open_source(path))
 
 

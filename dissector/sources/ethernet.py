@@ -1,0 +1,240 @@
+"""Modbus RTU carried over TCP or UDP by a serial gateway, read from the pcap/pcapng records of a network
+link (Ethernet, Linux cooked SLL/SLL2, raw IP, BSD loopback): the payloads on the RTU ports are the bus's
+bytes, each packet a record with its time, as the plugin reads them (lua/src/dissector.lua: its tcp_port and
+udp_port preferences, 0 by default: none). Each TCP connection or UDP conversation is a stream of its own,
+both directions in capture order (a request, its answer), its segments its records: a frame split over two
+segments waits in the stream for its end, as on a serial capture (no TCP reassembly, as the plugin).
+
+Packets with no bytes for the bus (ARP, other ports, TCP without payload) are counted and told in one
+warning; a capture with none on the ports is refused in one line naming the ports, the options and the ports
+that did carry payloads (Modbus/TCP on 502 named as such: vw3-decode reads its serial form only).
+"""
+from __future__ import annotations
+
+import struct
+from dataclasses import dataclass, field
+
+from dissector.errors import SourceError
+from dissector.protocol.crc import crc16_reference
+
+LINKTYPE_NULL, LINKTYPE_ETHERNET, LINKTYPE_RAW, LINKTYPE_LINUX_SLL = 0, 1, 101, 113
+LINKTYPE_IPV4, LINKTYPE_IPV6, LINKTYPE_LINUX_SLL2 = 228, 229, 276
+NETWORK_LINKTYPES = frozenset({LINKTYPE_NULL, LINKTYPE_ETHERNET, LINKTYPE_RAW, LINKTYPE_LINUX_SLL,
+                               LINKTYPE_IPV4, LINKTYPE_IPV6, LINKTYPE_LINUX_SLL2})
+ETHERTYPE_IPV4, ETHERTYPE_IPV6 = 0x0800, 0x86DD
+VLAN_TAGS = (0x8100, 0x88A8, 0x9100)  # 802.1Q, 802.1ad (QinQ) and the older QinQ tag: 4 bytes each
+TCP, UDP = 6, 17
+MODBUS_TCP_PORT = 502  # Modbus/TCP (MBAP header, no CRC): its own protocol, not the bus's bytes
+OPTIONS = "--tcp-port and --udp-port, as the plugin's vw3.tcp_port and vw3.udp_port preferences,"
+TCP_NAME = "TCP"
+LINK_NAMES = {LINKTYPE_NULL: "BSD loopback", LINKTYPE_ETHERNET: "Ethernet", LINKTYPE_RAW: "raw IP",
+              LINKTYPE_LINUX_SLL: "Linux cooked", LINKTYPE_IPV4: "IPv4", LINKTYPE_IPV6: "IPv6",
+              LINKTYPE_LINUX_SLL2: "Linux cooked v2"}
+
+
+@dataclass(frozen=True, slots=True)
+class RtuPorts:
+    """The TCP and UDP ports whose payloads are Modbus RTU (0: none), as the plugin's preferences."""
+
+    tcp: int = 0
+    udp: int = 0
+
+    def text(self) -> str:
+        given = [f"{name} port {port}" for name, port in (("TCP", self.tcp), ("UDP", self.udp)) if port]
+        return " and ".join(given) if given else "none given"
+
+
+Connection = tuple[str, str, str]  # (transport, one end, the other end): the same both ways
+
+
+@dataclass(slots=True)
+class Segment:
+    """A packet's transport payload: its connection, its bytes, the length its headers declare (more than
+    the bytes when the record was captured in part)."""
+
+    connection: Connection
+    ports: tuple[int, int]  # (source, destination)
+    transport: str
+    data: bytes
+    declared: int
+    sender: str = ""  # its source end
+    seq: int | None = None  # TCP's sequence number
+
+
+def _address(raw: bytes) -> str:
+    if len(raw) == 4:
+        return ".".join(map(str, raw))
+    return ":".join(raw[index : index + 2].hex() for index in range(0, 16, 2))
+
+
+def _ip(packet: bytes) -> tuple[int, bytes, bytes, bytes, int] | str:
+    """(protocol, source, destination, IP payload, its declared length) of an IPv4/IPv6 packet, or why not."""
+    if not packet:
+        return "not IP"
+    version = packet[0] >> 4
+    if version == 4 and len(packet) >= 20:
+        header = (packet[0] & 0x0F) * 4
+        total, flags_offset, protocol = struct.unpack_from("!H2xHxB", packet, 2)
+        total = total or len(packet)  # (0: a segment the sender's NIC splits, TSO, captured before: Wireshark's guess)
+        if flags_offset & 0x3FFF:  # (more fragments, or a fragment's offset: no transport header of its own)
+            return "fragmented IP"
+        return protocol, packet[12:16], packet[16:20], packet[header:total], total - header
+    if version == 6 and len(packet) >= 40:
+        length, protocol = struct.unpack_from("!HB", packet, 4)
+        return protocol, packet[8:24], packet[24:40], packet[40 : 40 + length], length
+    return "not IP"
+
+
+def network_payload(linktype: int, record: bytes) -> bytes | str:
+    """The IP packet a record of a network link carries, or why none (ARP, ...)."""
+    if linktype == LINKTYPE_ETHERNET:
+        at, ethertype = 12, None
+        while len(record) >= at + 2:
+            ethertype = struct.unpack_from("!H", record, at)[0]
+            if ethertype not in VLAN_TAGS:
+                break
+            at += 4
+        start = at + 2
+    elif linktype == LINKTYPE_LINUX_SLL:
+        ethertype = struct.unpack_from("!H", record, 14)[0] if len(record) >= 16 else None
+        start = 16
+    elif linktype == LINKTYPE_LINUX_SLL2:
+        ethertype = struct.unpack_from("!H", record, 0)[0] if len(record) >= 20 else None
+        start = 20
+    elif linktype == LINKTYPE_NULL:  # (the address family in the writer's byte order: 2 IPv4, 24/28/30 IPv6)
+        family = int.from_bytes(record[:4], "little") if len(record) >= 4 else -1
+        family = family if family < 0x10000 else int.from_bytes(record[:4], "big")
+        ethertype = ETHERTYPE_IPV4 if family == 2 else ETHERTYPE_IPV6 if family in (24, 28, 30) else None
+        start = 4
+    else:  # raw IP
+        return record
+    if ethertype not in (ETHERTYPE_IPV4, ETHERTYPE_IPV6):
+        return "not IP"
+    return record[start:]
+
+
+def segment(linktype: int, record: bytes) -> Segment | str:
+    """The TCP or UDP payload of a record of a network link, or why it has none."""
+    packet = network_payload(linktype, record)
+    if isinstance(packet, str):
+        return packet
+    ip = _ip(packet)
+    if isinstance(ip, str):
+        return ip
+    protocol, source, destination, body, declared = ip
+    seq = None
+    if protocol == TCP and len(body) >= 20:
+        sport, dport, seq, offset = struct.unpack_from("!HHI4xB", body)
+        header, name = (offset >> 4) * 4, "TCP"
+    elif protocol == UDP and len(body) >= 8:
+        sport, dport, length = struct.unpack_from("!HHH", body)
+        header, name, declared = 8, "UDP", length
+    else:
+        return "not TCP or UDP"
+    a, b = f"{_address(source)}:{sport}", f"{_address(destination)}:{dport}"
+    connection = (name, *sorted((a, b)))
+    return Segment(connection, (sport, dport), name, body[header:declared], max(declared - header, 0), a, seq)
+
+
+@dataclass(slots=True)
+class Transport:
+    """The reading of one capture's network records: which payloads are the bus's (`only`: one connection's,
+    when each is read as its own bus), and what the others were, for the end's warning or refusal."""
+
+    name: str
+    ports: RtuPorts
+    only: Connection | None = None
+    linktype: int | None = None  # the first record's
+    taken: int = 0
+    skipped: dict[str, int] = field(default_factory=dict)
+    elsewhere: dict[tuple[str, int], int] = field(default_factory=dict)  # payloads on other ports
+    connections: list[Connection] = field(default_factory=list)  # on the RTU ports, in order of appearance
+    judged: set[Connection] = field(default_factory=set)  # connections whose first payload was looked at
+    sent: dict[tuple[Connection, str], int] = field(default_factory=dict)  # a TCP sender's next sequence number
+
+    def take(self, linktype: int, record: bytes, number: int) -> Segment | None:
+        """The payload of record `number` when it is the bus's; else None (counted)."""
+        self.linktype = linktype if self.linktype is None else self.linktype
+        found = segment(linktype, record)
+        if isinstance(found, str):
+            return self._skip(found)
+        port = self.ports.tcp if found.transport == "TCP" else self.ports.udp
+        if not port or port not in found.ports:
+            if found.declared:  # (the server's port, as a user sets it: the lower, an ephemeral one is high)
+                key = (found.transport, min(found.ports))
+                self.elsewhere[key] = self.elsewhere.get(key, 0) + 1
+            return self._skip("other ports" if found.declared else f"{found.transport} without payload")
+        if found.connection not in self.connections:
+            self.connections.append(found.connection)
+        if self.only is not None and found.connection != self.only:
+            return self._skip("other connections")
+        if not found.declared:
+            return self._skip(f"{found.transport} without payload")
+        if found.seq is not None and self._again(found):
+            return self._skip("TCP retransmissions")
+        if found.connection not in self.judged:  # (its first payload)
+            self.judged.add(found.connection)
+            self._refuse_modbus_tcp(found, port, number)
+        self.taken += 1
+        return found
+
+    def _refuse_modbus_tcp(self, found: Segment, port: int, number: int) -> None:
+        """A connection whose first payload is a Modbus/TCP ADU (MBAP header: protocol 0, its length the
+        rest), not an RTU frame (its CRC): refused in one line rather than shown as noise."""
+        data = found.data
+        if len(data) < 8 or data[2:4] != b"\0\0" or int.from_bytes(data[4:6], "big") != len(data) - 6:
+            return
+        if crc16_reference(data[:-2]) == int.from_bytes(data[-2:], "little"):
+            return
+        raise SourceError(
+            f"{self.name}: record {number}: {found.transport} port {port} carries Modbus/TCP (MBAP header: "
+            f"transaction {int.from_bytes(data[:2], 'big')}, unit {data[6]}, no CRC), not Modbus RTU frames, "
+            "which vw3-decode does not read: tshark with lua/vw3.lua and lua/vw3_modbus.lua names its registers")
+
+    def _again(self, found: Segment) -> bool:
+        """A TCP segment whose bytes all came before (a retransmission): Wireshark's TCP gives it no
+        subdissector, so the plugin never sees it. Sequence numbers compared modulo 2**32."""
+        end = (found.seq + found.declared) & 0xFFFFFFFF
+        sender = (found.connection, found.sender)  # (a server's end is every connection's)
+        sent = self.sent.get(sender)
+        if sent is not None:
+            ahead = (end - sent) & 0xFFFFFFFF
+            if ahead == 0 or ahead & 0x80000000:
+                return True
+        self.sent[sender] = end
+        return False
+
+    def _skip(self, why: str) -> None:
+        self.skipped[why] = self.skipped.get(why, 0) + 1
+        return None
+
+    def finish(self, warn) -> None:  # type: ignore[no-untyped-def]
+        """At the end: refuse a capture none of whose packets carried the bus's bytes; else tell the
+        packets passed over, in one warning (`warn(kind, message)`)."""
+        if not self.taken and self.only is None:
+            raise SourceError(self.refusal())
+        passed = sum(count for why, count in self.skipped.items() if why != "other connections")
+        if passed and (self.only is None or self.connections[:1] == [self.only]):
+            said = ", ".join(f"{count} {why}" for why, count in self.skipped.items() if why != "other connections")
+            packets = f"{passed} packet carried" if passed == 1 else f"{passed} packets carried"
+            warn("skipped packets", f"{self.name}: {packets} no Modbus RTU bytes on {self.ports.text()}: "
+                 f"skipped ({said})")
+
+    def refusal(self) -> str:
+        """One line: no payload on the RTU ports; the ports that carried some, Modbus/TCP's named."""
+        seen = sorted(self.elsewhere.items(), key=lambda item: (-item[1], item[0]))
+        shown = ", ".join(f"{transport} port {port} ({count} packet{'s' if count != 1 else ''})"
+                          for (transport, port), count in seen[:4])
+        label = LINK_NAMES.get(self.linktype or 0, "network link")
+        text = (f"{self.name}: {label} (linktype {self.linktype}): no TCP or UDP payload on the Modbus RTU ports "
+                f"({self.ports.text()}: {OPTIONS} set them)")
+        if shown:
+            text += f"; payloads on {shown}{' and more' if len(seen) > 4 else ''}"
+        else:
+            count = sum(self.skipped.values())
+            said = ", ".join(f"{number} {why}" for why, number in self.skipped.items())
+            text += f"; its {count} packet{'s' if count != 1 else ''}: {said}"
+        if (TCP_NAME, MODBUS_TCP_PORT) in self.elsewhere:
+            text += ("; port 502 is Modbus/TCP (MBAP header, no CRC), which vw3-decode does not read: "
+                     "tshark with lua/vw3.lua and lua/vw3_modbus.lua names its registers")
+        return text
