@@ -21,6 +21,7 @@ from dissector.render.capturefile import CaptureOutput
 from dissector.render.pcapnghead import Interface, pcapng_interface
 from dissector.render.pcapngwriter import resolution_text, tsresol
 from dissector.render.pcapwriter import MICROS, NANOS, finer_than_micros
+from dissector.sources.ethernet import RtuPorts
 from dissector.sources.interfaces import PacketInterface, open_interface, packet_interfaces
 from dissector.sources.pcap import MAGICS, is_pcap
 from dissector.sources.pcapng import IDB, SHB, _interface, is_pcapng
@@ -55,7 +56,7 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
                None, None, None)
     for shown_name, files in captures:
         path = files[0]
-        buses = packet_interfaces(path) if path != "-" and args.format in (None, "pcapng") else []
+        buses = packet_interfaces(path, _ports(args)) if path != "-" and args.format in (None, "pcap", "pcapng") else []
         for bus in buses if len(buses) > 1 else [None]:
             source = _open_input(files, bus, args, env.stdin if path == "-" else None)
             chunks: Iterable[Chunk] = source
@@ -109,10 +110,16 @@ def _open_input(files: tuple[str, ...], bus: PacketInterface | None, args: Decod
     """A Source of one capture's files (a RingSource of several), or of one interface of them."""
     def open_file(path: str) -> Any:
         if bus is None:
-            return open_source(path, args.format, mode=args.mode, stdin=stdin)
-        return open_interface(path, bus.ordinal, args.mode, tell_skipped=bus.first, where=f"{path}: {bus.label()}: ")
+            return open_source(path, args.format, mode=args.mode, stdin=stdin, ports=_ports(args))
+        return open_interface(path, bus.ordinal, args.mode, tell_skipped=bus.first, where=f"{path}: {bus.label()}: ",
+                              ports=_ports(args))
 
     return open_file(files[0]) if len(files) == 1 else RingSource(files, open_file)
+
+
+def _ports(args: DecodeOptions) -> RtuPorts:
+    """The TCP/UDP ports read as Modbus RTU in a network capture (sources/ethernet.py)."""
+    return RtuPorts(args.tcp_port, args.udp_port)
 
 
 def is_pcapng_file(path: str) -> bool:

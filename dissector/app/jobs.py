@@ -22,6 +22,7 @@ from dissector.errors import ExitStatus, ProfileError, UsageError
 from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
 from dissector.framing.linespeed import line_settings, settings_from_text
+from dissector.sources.ethernet import RtuPorts
 from dissector.sources.interfaces import open_interface, packet_interfaces
 from dissector.framing.timing import GapChecker
 from dissector.pipeline import Dissector
@@ -53,6 +54,7 @@ class JobSettings:
     timeout: float = 1.0
     baud: int | None = None  # --baud; None: what framing/linespeed.py says of each capture
     profile_args: argparse.Namespace | None = None  # None: -n (no device profile)
+    ports: RtuPorts = RtuPorts()  # --tcp-port, --udp-port: RTU over TCP/UDP in a network capture
 
 
 @dataclass(slots=True)
@@ -65,12 +67,12 @@ class CaptureResult:
     map_warnings: list[str] = field(default_factory=list)
 
 
-def group_captures(paths: list[str]) -> list[Capture]:
+def group_captures(paths: list[str], ports: RtuPorts = RtuPorts()) -> list[Capture]:
     """Files of one ring buffer are one capture (app/rings.py); a pcapng with packets from several
     interfaces, one capture per interface (its bus, over every file of its ring)."""
     captures = []
     for shown, files in group_files(paths):
-        buses = packet_interfaces(files[0])
+        buses = packet_interfaces(files[0], ports)
         if len(buses) > 1:
             captures += [Capture(f"{shown}: {bus.label()}", files, f"{os.path.abspath(shown)}#{bus.ordinal}",
                                  bus.ordinal) for bus in buses]
@@ -81,8 +83,8 @@ def group_captures(paths: list[str]) -> list[Capture]:
 
 def _open(path: str, settings: JobSettings, interface: int | None) -> Any:
     if interface is None:
-        return open_source(path, settings.format, mode=settings.mode)
-    return open_interface(path, interface, settings.mode)
+        return open_source(path, settings.format, mode=settings.mode, ports=settings.ports)
+    return open_interface(path, interface, settings.mode, ports=settings.ports)
 
 
 def _chunks(files: tuple[str, ...], settings: JobSettings, tables: object, result: CaptureResult,
@@ -145,7 +147,7 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
         # The one line speed of this capture, as a single-process decode of it gets (framing/linespeed.py).
         line = line_settings(capture.files[0], source_format, settings.baud)
         if capture.interface is not None and settings.baud is None:  # (that interface's own description)
-            texts = next((bus.interface.texts for bus in packet_interfaces(capture.files[0])
+            texts = next((bus.interface.texts for bus in packet_interfaces(capture.files[0], settings.ports)
                           if bus.ordinal == capture.interface), ())
             line = settings_from_text(" ".join(texts)) or line_settings(None, None, None)
         bus.new_input(mode, line)
@@ -274,10 +276,11 @@ def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog:
         os.makedirs(args.parquet, exist_ok=True)
     except OSError as error:
         raise UsageError(f"--parquet {args.parquet}: {error.strerror or error}") from None
-    captures = group_captures(list(args.files))
+    ports = RtuPorts(args.tcp_port, args.udp_port)
+    captures = group_captures(list(args.files), ports)
     settings = JobSettings(
         directory=os.path.abspath(args.parquet), format=args.format, mode=args.mode, timeout=args.timeout,
-        baud=args.baud if baud_given(args) else None, profile_args=None if args.no_profile else args,
+        baud=args.baud if baud_given(args) else None, profile_args=None if args.no_profile else args, ports=ports,
     )
     failed = 0
     said: list[str] = []  # the map warnings of every capture, each once, after the run (as a file decode)

@@ -57,6 +57,8 @@ class DecodeOptions:
     ring: tuple[str, ...] = ()  # -b
     frame_records: bool = False  # --frame-records
     print_too: bool = False
+    tcp_port: int = 0  # --tcp-port: Modbus RTU over TCP in a network capture (the plugin's vw3.tcp_port)
+    udp_port: int = 0  # --udp-port (vw3.udp_port)
     quiet: bool = False  # -q
     stats: bool = False
     watch: str | None = None
@@ -191,6 +193,15 @@ def build_parser() -> argparse.ArgumentParser:
     )
     decoding.add_argument("--mode", choices=MODES, help="rtu or ascii framing instead of detecting it")
     decoding.add_argument(
+        "--tcp-port", type=_port, default=0, metavar="PORT",
+        help="in a pcap/pcapng of Ethernet (or Linux cooked, raw IP): the TCP port of a serial gateway carrying "
+        "Modbus RTU frames, as the plugin's vw3.tcp_port preference (default 0: none)",
+    )
+    decoding.add_argument(
+        "--udp-port", type=_port, default=0, metavar="PORT",
+        help="the same for RTU over UDP, as the plugin's vw3.udp_port preference (default 0: none)",
+    )
+    decoding.add_argument(
         "--timeout",
         type=timeout_seconds,
         default=1.0,
@@ -216,6 +227,13 @@ ASSUMED_BAUD = _Assumed(19200)
 
 def baud_given(args: argparse.Namespace) -> bool:
     return type(args.baud) is not _Assumed
+
+
+def _port(text: str) -> int:
+    value = int(text) if text.isdigit() else -1
+    if not 0 <= value <= 65535:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a port (0..65535)")
+    return value
 
 
 def _jobs(text: str) -> int:
@@ -286,6 +304,8 @@ def decode_options(args: argparse.Namespace) -> DecodeOptions:
         ring=tuple(args.ring or ()),
         frame_records=args.frame_records,
         print_too=args.print_too,
+        tcp_port=args.tcp_port,
+        udp_port=args.udp_port,
         quiet=args.quiet,
         stats=args.stats,
         watch=args.watch,
