@@ -529,6 +529,8 @@ def run(argv: list[str] | None, env: Environment) -> int:
                 raise UsageError("--parquet reads files: capture with -w FILE, then --parquet DIR FILE")
             if args.output_format == "registers":
                 raise UsageError("-T registers reads files: capture with -w FILE, then -T registers FILE")
+            if args.tcp_port or args.udp_port:
+                raise UsageError("--tcp-port and --udp-port read network captures; --live reads the serial line itself")
             return _live(args, env)
         if not args.files and not args.hex:
             raise UsageError(f"give a capture FILE, - for stdin, --hex BYTES or --live PORT (see {PROG} --help)")

@@ -307,3 +307,10 @@ def test_ipv6_over_bsd_loopback(tmp_path: Path) -> None:
         writer.write(packet(False, SCENARIO_1, 1), 1.01)
     assert run_cli(["--tcp-port", "4001", *ATV71, str(tmp_path / "lo.pcap")]) == (
         0, lines((1, "0.000000", REQUEST), (2, "0.010000", ANSWER_1)), "")
+
+
+def test_live_refuses_the_network_ports() -> None:
+    """A serial line has no TCP or UDP port: --tcp-port/--udp-port with --live is refused, not ignored."""
+    message = "vw3-decode: --tcp-port and --udp-port read network captures; --live reads the serial line itself\n"
+    assert run_cli(["--live", "loop://", "--tcp-port", "4001"]) == (2, "", message)
+    assert run_cli(["--live", "loop://", "--udp-port", "4001"]) == (2, "", message)
