@@ -113,6 +113,22 @@ def comm_event(byte: int) -> dict[str, Any]:
     return {"byte": byte, "event": _EVENTS.get(byte, _EVENT_KINDS[-1][1]), "flags": None}
 
 
+def comm_event_bits(byte: int) -> list[str]:
+    """Each bit of an FC12 event's kind as tshark -V's Modbus/TCP dissector lists it, set or not
+    (`.... ..0. = Communication Error: 0`, the lowest bit first); none for an event of no kind."""
+    for bit, _name in _EVENT_KINDS:
+        if bit and byte & bit:
+            lines = []
+            for mask, flag in sorted(SPEC.names[f"comm_event_{bit}"].items()):
+                marks = "".join(("1" if byte & place else "0") if mask & place else "." for place in _PLACES)
+                lines.append(f"{marks[:4]} {marks[4:]} = {flag}: {1 if byte & mask else 0}")
+            return lines
+    return []
+
+
+_PLACES = (128, 64, 32, 16, 8, 4, 2, 1)  # a byte's bits, as tshark writes them: the highest first
+
+
 COIL_ON, COIL_OFF = 0xFF00, 0x0000
 # The request a response answers, decoded, or None (not in the capture, or its data did not parse).
 RequestOf = Callable[[Frame], "Frame | None"]
