@@ -113,20 +113,30 @@ def comm_event(byte: int) -> dict[str, Any]:
     return {"byte": byte, "event": _EVENTS.get(byte, _EVENT_KINDS[-1][1]), "flags": None}
 
 
+def event_bit_lines() -> dict[int, list[tuple[int, str]]]:
+    """By event kind (its bit), each bit of that kind as (mask, line): tshark -V's Modbus/TCP line of the bit
+    with `{}` where the bit's value goes, twice (`.... ..{}. = Communication Error: {}`), the lowest bit
+    first. -V (comm_event_bits) and the plugin's tree (DATA.event_bits, codegen/display_lua.py) fill them."""
+    lines: dict[int, list[tuple[int, str]]] = {}
+    for kind in SPEC.names["comm_event_kind"]:
+        if kind:
+            for mask, flag in sorted(SPEC.names[f"comm_event_{kind}"].items()):
+                marks = ["{}" if mask & place else "." for place in (128, 64, 32, 16, 8, 4, 2, 1)]
+                line = "".join(marks[:4]) + " " + "".join(marks[4:]) + f" = {flag}: {{}}"
+                lines.setdefault(kind, []).append((mask, line))
+    return lines
+
+
+_EVENT_BITS = event_bit_lines()
+
+
 def comm_event_bits(byte: int) -> list[str]:
-    """Each bit of an FC12 event's kind as tshark -V's Modbus/TCP dissector lists it, set or not
-    (`.... ..0. = Communication Error: 0`, the lowest bit first); none for an event of no kind."""
+    """Each bit of an FC12 event's kind, set or not, as tshark -V lists it (`.... ..0. = Communication
+    Error: 0`); none for an event of no kind."""
     for bit, _name in _EVENT_KINDS:
         if bit and byte & bit:
-            lines = []
-            for mask, flag in sorted(SPEC.names[f"comm_event_{bit}"].items()):
-                marks = "".join(("1" if byte & place else "0") if mask & place else "." for place in _PLACES)
-                lines.append(f"{marks[:4]} {marks[4:]} = {flag}: {1 if byte & mask else 0}")
-            return lines
+            return [line.format(*[1 if byte & mask else 0] * 2) for mask, line in _EVENT_BITS[bit]]
     return []
-
-
-_PLACES = (128, 64, 32, 16, 8, 4, 2, 1)  # a byte's bits, as tshark writes them: the highest first
 
 
 COIL_ON, COIL_OFF = 0xFF00, 0x0000

@@ -207,20 +207,11 @@ local function add_events(t, tvb, f, b, at, size)
       item:add(range, "Event: " .. (EVENTS[byte] or EVENT_KINDS[0]))
     else
       item:add(range, "Event: " .. EVENT_KINDS[kind])
-      -- (each bit of its kind, set or not, the lowest first: `.... ..0. = Communication Error: 0`, as tshark -V
-      -- and decode/fields.py comm_event_bits)
-      local masks, names = {}, DATA.names["comm_event_" .. kind]
-      for mask in pairs(names) do masks[#masks + 1] = mask end
-      table.sort(masks)
+      -- (each bit of its kind, set or not, as tshark -V: decode/fields.py event_bit_lines, DATA.event_bits)
       local under = item:add(range, "Flags")
-      for _, mask in ipairs(masks) do
-        local marks = {}
-        for place = 7, 0, -1 do
-          local bit = 2 ^ place
-          marks[#marks + 1] = set(mask, bit) and (set(byte, bit) and "1" or "0") or "."
-          if place == 4 then marks[#marks + 1] = " " end
-        end
-        under:add(range, format("%s = %s: %d", concat(marks), names[mask], set(byte, mask) and 1 or 0))
+      for _, bit in ipairs(DATA.event_bits[kind]) do
+        local value = set(byte, bit[1]) and 1 or 0
+        under:add(range, format(bit[2], value, value))
       end
     end
   end
