@@ -4269,6 +4269,280 @@ DATA.field_places = {
   mei_response = { mei_type = { at = 2, size = 1 }, body = { at = 3 } },
 }
 DATA.bit_windows = { [1] = true, [2] = true, [5] = true, [15] = true }
+DATA.event_bits = {
+  [128] = {
+    { 2, ".... ..%d. = Communication Error: %d" },
+    { 16, "...%d .... = Character Overrun: %d" },
+    { 32, "..%d. .... = Currently in Listen Only Mode: %d" },
+    { 64, ".%d.. .... = Broadcast Received: %d" },
+  },
+  [64] = {
+    { 1, ".... ...%d = Read Exception Sent: %d" },
+    { 2, ".... ..%d. = Slave Abort Exception Sent: %d" },
+    { 4, ".... .%d.. = Slave Busy Exception Sent: %d" },
+    { 8, ".... %d... = Slave Program NAK Exception Sent: %d" },
+    { 16, "...%d .... = Write Timeout Error Occurred: %d" },
+    { 32, "..%d. .... = Currently in Listen Only Mode: %d" },
+  },
+}
+DATA.comm_events = {
+  [0] = { "Initiated Communication Restart", 0 },
+  [1] = { "Unknown Event", 0 },
+  [2] = { "Unknown Event", 0 },
+  [3] = { "Unknown Event", 0 },
+  [4] = { "Entered Listen Only Mode", 0 },
+  [5] = { "Unknown Event", 0 },
+  [6] = { "Unknown Event", 0 },
+  [7] = { "Unknown Event", 0 },
+  [8] = { "Unknown Event", 0 },
+  [9] = { "Unknown Event", 0 },
+  [10] = { "Unknown Event", 0 },
+  [11] = { "Unknown Event", 0 },
+  [12] = { "Unknown Event", 0 },
+  [13] = { "Unknown Event", 0 },
+  [14] = { "Unknown Event", 0 },
+  [15] = { "Unknown Event", 0 },
+  [16] = { "Unknown Event", 0 },
+  [17] = { "Unknown Event", 0 },
+  [18] = { "Unknown Event", 0 },
+  [19] = { "Unknown Event", 0 },
+  [20] = { "Unknown Event", 0 },
+  [21] = { "Unknown Event", 0 },
+  [22] = { "Unknown Event", 0 },
+  [23] = { "Unknown Event", 0 },
+  [24] = { "Unknown Event", 0 },
+  [25] = { "Unknown Event", 0 },
+  [26] = { "Unknown Event", 0 },
+  [27] = { "Unknown Event", 0 },
+  [28] = { "Unknown Event", 0 },
+  [29] = { "Unknown Event", 0 },
+  [30] = { "Unknown Event", 0 },
+  [31] = { "Unknown Event", 0 },
+  [32] = { "Unknown Event", 0 },
+  [33] = { "Unknown Event", 0 },
+  [34] = { "Unknown Event", 0 },
+  [35] = { "Unknown Event", 0 },
+  [36] = { "Unknown Event", 0 },
+  [37] = { "Unknown Event", 0 },
+  [38] = { "Unknown Event", 0 },
+  [39] = { "Unknown Event", 0 },
+  [40] = { "Unknown Event", 0 },
+  [41] = { "Unknown Event", 0 },
+  [42] = { "Unknown Event", 0 },
+  [43] = { "Unknown Event", 0 },
+  [44] = { "Unknown Event", 0 },
+  [45] = { "Unknown Event", 0 },
+  [46] = { "Unknown Event", 0 },
+  [47] = { "Unknown Event", 0 },
+  [48] = { "Unknown Event", 0 },
+  [49] = { "Unknown Event", 0 },
+  [50] = { "Unknown Event", 0 },
+  [51] = { "Unknown Event", 0 },
+  [52] = { "Unknown Event", 0 },
+  [53] = { "Unknown Event", 0 },
+  [54] = { "Unknown Event", 0 },
+  [55] = { "Unknown Event", 0 },
+  [56] = { "Unknown Event", 0 },
+  [57] = { "Unknown Event", 0 },
+  [58] = { "Unknown Event", 0 },
+  [59] = { "Unknown Event", 0 },
+  [60] = { "Unknown Event", 0 },
+  [61] = { "Unknown Event", 0 },
+  [62] = { "Unknown Event", 0 },
+  [63] = { "Unknown Event", 0 },
+  [64] = { "Send Event", 64 },
+  [65] = { "Send Event", 64 },
+  [66] = { "Send Event", 64 },
+  [67] = { "Send Event", 64 },
+  [68] = { "Send Event", 64 },
+  [69] = { "Send Event", 64 },
+  [70] = { "Send Event", 64 },
+  [71] = { "Send Event", 64 },
+  [72] = { "Send Event", 64 },
+  [73] = { "Send Event", 64 },
+  [74] = { "Send Event", 64 },
+  [75] = { "Send Event", 64 },
+  [76] = { "Send Event", 64 },
+  [77] = { "Send Event", 64 },
+  [78] = { "Send Event", 64 },
+  [79] = { "Send Event", 64 },
+  [80] = { "Send Event", 64 },
+  [81] = { "Send Event", 64 },
+  [82] = { "Send Event", 64 },
+  [83] = { "Send Event", 64 },
+  [84] = { "Send Event", 64 },
+  [85] = { "Send Event", 64 },
+  [86] = { "Send Event", 64 },
+  [87] = { "Send Event", 64 },
+  [88] = { "Send Event", 64 },
+  [89] = { "Send Event", 64 },
+  [90] = { "Send Event", 64 },
+  [91] = { "Send Event", 64 },
+  [92] = { "Send Event", 64 },
+  [93] = { "Send Event", 64 },
+  [94] = { "Send Event", 64 },
+  [95] = { "Send Event", 64 },
+  [96] = { "Send Event", 64 },
+  [97] = { "Send Event", 64 },
+  [98] = { "Send Event", 64 },
+  [99] = { "Send Event", 64 },
+  [100] = { "Send Event", 64 },
+  [101] = { "Send Event", 64 },
+  [102] = { "Send Event", 64 },
+  [103] = { "Send Event", 64 },
+  [104] = { "Send Event", 64 },
+  [105] = { "Send Event", 64 },
+  [106] = { "Send Event", 64 },
+  [107] = { "Send Event", 64 },
+  [108] = { "Send Event", 64 },
+  [109] = { "Send Event", 64 },
+  [110] = { "Send Event", 64 },
+  [111] = { "Send Event", 64 },
+  [112] = { "Send Event", 64 },
+  [113] = { "Send Event", 64 },
+  [114] = { "Send Event", 64 },
+  [115] = { "Send Event", 64 },
+  [116] = { "Send Event", 64 },
+  [117] = { "Send Event", 64 },
+  [118] = { "Send Event", 64 },
+  [119] = { "Send Event", 64 },
+  [120] = { "Send Event", 64 },
+  [121] = { "Send Event", 64 },
+  [122] = { "Send Event", 64 },
+  [123] = { "Send Event", 64 },
+  [124] = { "Send Event", 64 },
+  [125] = { "Send Event", 64 },
+  [126] = { "Send Event", 64 },
+  [127] = { "Send Event", 64 },
+  [128] = { "Receive Event", 128 },
+  [129] = { "Receive Event", 128 },
+  [130] = { "Receive Event", 128 },
+  [131] = { "Receive Event", 128 },
+  [132] = { "Receive Event", 128 },
+  [133] = { "Receive Event", 128 },
+  [134] = { "Receive Event", 128 },
+  [135] = { "Receive Event", 128 },
+  [136] = { "Receive Event", 128 },
+  [137] = { "Receive Event", 128 },
+  [138] = { "Receive Event", 128 },
+  [139] = { "Receive Event", 128 },
+  [140] = { "Receive Event", 128 },
+  [141] = { "Receive Event", 128 },
+  [142] = { "Receive Event", 128 },
+  [143] = { "Receive Event", 128 },
+  [144] = { "Receive Event", 128 },
+  [145] = { "Receive Event", 128 },
+  [146] = { "Receive Event", 128 },
+  [147] = { "Receive Event", 128 },
+  [148] = { "Receive Event", 128 },
+  [149] = { "Receive Event", 128 },
+  [150] = { "Receive Event", 128 },
+  [151] = { "Receive Event", 128 },
+  [152] = { "Receive Event", 128 },
+  [153] = { "Receive Event", 128 },
+  [154] = { "Receive Event", 128 },
+  [155] = { "Receive Event", 128 },
+  [156] = { "Receive Event", 128 },
+  [157] = { "Receive Event", 128 },
+  [158] = { "Receive Event", 128 },
+  [159] = { "Receive Event", 128 },
+  [160] = { "Receive Event", 128 },
+  [161] = { "Receive Event", 128 },
+  [162] = { "Receive Event", 128 },
+  [163] = { "Receive Event", 128 },
+  [164] = { "Receive Event", 128 },
+  [165] = { "Receive Event", 128 },
+  [166] = { "Receive Event", 128 },
+  [167] = { "Receive Event", 128 },
+  [168] = { "Receive Event", 128 },
+  [169] = { "Receive Event", 128 },
+  [170] = { "Receive Event", 128 },
+  [171] = { "Receive Event", 128 },
+  [172] = { "Receive Event", 128 },
+  [173] = { "Receive Event", 128 },
+  [174] = { "Receive Event", 128 },
+  [175] = { "Receive Event", 128 },
+  [176] = { "Receive Event", 128 },
+  [177] = { "Receive Event", 128 },
+  [178] = { "Receive Event", 128 },
+  [179] = { "Receive Event", 128 },
+  [180] = { "Receive Event", 128 },
+  [181] = { "Receive Event", 128 },
+  [182] = { "Receive Event", 128 },
+  [183] = { "Receive Event", 128 },
+  [184] = { "Receive Event", 128 },
+  [185] = { "Receive Event", 128 },
+  [186] = { "Receive Event", 128 },
+  [187] = { "Receive Event", 128 },
+  [188] = { "Receive Event", 128 },
+  [189] = { "Receive Event", 128 },
+  [190] = { "Receive Event", 128 },
+  [191] = { "Receive Event", 128 },
+  [192] = { "Receive Event", 128 },
+  [193] = { "Receive Event", 128 },
+  [194] = { "Receive Event", 128 },
+  [195] = { "Receive Event", 128 },
+  [196] = { "Receive Event", 128 },
+  [197] = { "Receive Event", 128 },
+  [198] = { "Receive Event", 128 },
+  [199] = { "Receive Event", 128 },
+  [200] = { "Receive Event", 128 },
+  [201] = { "Receive Event", 128 },
+  [202] = { "Receive Event", 128 },
+  [203] = { "Receive Event", 128 },
+  [204] = { "Receive Event", 128 },
+  [205] = { "Receive Event", 128 },
+  [206] = { "Receive Event", 128 },
+  [207] = { "Receive Event", 128 },
+  [208] = { "Receive Event", 128 },
+  [209] = { "Receive Event", 128 },
+  [210] = { "Receive Event", 128 },
+  [211] = { "Receive Event", 128 },
+  [212] = { "Receive Event", 128 },
+  [213] = { "Receive Event", 128 },
+  [214] = { "Receive Event", 128 },
+  [215] = { "Receive Event", 128 },
+  [216] = { "Receive Event", 128 },
+  [217] = { "Receive Event", 128 },
+  [218] = { "Receive Event", 128 },
+  [219] = { "Receive Event", 128 },
+  [220] = { "Receive Event", 128 },
+  [221] = { "Receive Event", 128 },
+  [222] = { "Receive Event", 128 },
+  [223] = { "Receive Event", 128 },
+  [224] = { "Receive Event", 128 },
+  [225] = { "Receive Event", 128 },
+  [226] = { "Receive Event", 128 },
+  [227] = { "Receive Event", 128 },
+  [228] = { "Receive Event", 128 },
+  [229] = { "Receive Event", 128 },
+  [230] = { "Receive Event", 128 },
+  [231] = { "Receive Event", 128 },
+  [232] = { "Receive Event", 128 },
+  [233] = { "Receive Event", 128 },
+  [234] = { "Receive Event", 128 },
+  [235] = { "Receive Event", 128 },
+  [236] = { "Receive Event", 128 },
+  [237] = { "Receive Event", 128 },
+  [238] = { "Receive Event", 128 },
+  [239] = { "Receive Event", 128 },
+  [240] = { "Receive Event", 128 },
+  [241] = { "Receive Event", 128 },
+  [242] = { "Receive Event", 128 },
+  [243] = { "Receive Event", 128 },
+  [244] = { "Receive Event", 128 },
+  [245] = { "Receive Event", 128 },
+  [246] = { "Receive Event", 128 },
+  [247] = { "Receive Event", 128 },
+  [248] = { "Receive Event", 128 },
+  [249] = { "Receive Event", 128 },
+  [250] = { "Receive Event", 128 },
+  [251] = { "Receive Event", 128 },
+  [252] = { "Receive Event", 128 },
+  [253] = { "Receive Event", 128 },
+  [254] = { "Receive Event", 128 },
+  [255] = { "Receive Event", 128 },
+}
 -- END GENERATED DATA
 
 -- ---- vw3.crc: lua/src/crc.lua ----
@@ -9681,7 +9955,7 @@ local ByteArray, DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS = ByteArray, DATA, DIAG
 local MASK_WRITES, NO_INTERPRETATION, PARAMETER_FIELDS = MASK_WRITES, NO_INTERPRETATION, PARAMETER_FIELDS
 local REQUEST, concat, describe, device_of, ex = REQUEST, concat, describe, device_of, ex
 local exception_name, floor, format, function_name, hex_of = exception_name, floor, format, function_name, hex_of
-local hex_pairs, ipairs, made_once, math, pairs, pf = hex_pairs, ipairs, made_once, math, pairs, pf
+local hex_pairs, ipairs, made_once, math, pf = hex_pairs, ipairs, made_once, math, pf
 local printable_ascii, python_repr, rows_for, say, string = printable_ascii, python_repr, rows_for, say, string
 local table, tostring, u16, words_at = table, tostring, u16, words_at
 
@@ -9864,37 +10138,25 @@ local function add_text_or_bytes(t, tvb, f, b, at, size, as_text, as_bytes)
   else t:add(as_bytes, bytes_range(tvb, f, b, at, size)) end
 end
 
--- FC12's events (b[at..at+size-1], newest first) named as vw3-decode -V names them (decode/fields.py
--- comm_event, data/modbus.toml [names.comm_event*]): a kind's bit set (the highest first) names the event and
--- its bits set; else the byte's own name, or kind 0's. (Text items: the bytes' field is vw3.events.)
-local EVENTS, EVENT_KINDS = DATA.names.comm_event, DATA.names.comm_event_kind
-local KIND_BITS = {}
-for kind_bit in pairs(EVENT_KINDS) do if kind_bit > 0 then KIND_BITS[#KIND_BITS + 1] = kind_bit end end
-table.sort(KIND_BITS, function(x, y) return x > y end)
-
+-- FC12's events (b[at..at+size-1], newest first) named as vw3-decode -V names them: DATA.comm_events[byte], its
+-- name and kind (decode/fields.py comm_event, event_kind: data/modbus.toml [names.comm_event*]); an event of a
+-- kind each bit of that kind, set or not, as tshark -V (DATA.event_bits: decode/fields.py event_bit_lines).
+-- (Text items: the bytes' field is vw3.events.)
 local function set(byte, mask) return floor(byte / mask) % 2 == 1 end -- (mask: a power of two)
 
 local function add_events(t, tvb, f, b, at, size)
   local list = t:add(frame_range(tvb, f, at, size), format("Event list (%d)", size))
   for k = 0, size - 1 do
     local byte, range = b[at + k], frame_range(tvb, f, at + k, 1)
-    local item = list:add(range, format("[%d]", k))
+    local item, event = list:add(range, format("[%d]", k)), DATA.comm_events[byte]
     item:add(range, format("Byte: %d (0x%X)", byte, byte))
-    local kind = nil
-    for _, kind_bit in ipairs(KIND_BITS) do
-      if set(byte, kind_bit) then kind = kind_bit break end
-    end
-    if kind == nil then
-      item:add(range, "Event: " .. (EVENTS[byte] or EVENT_KINDS[0]))
-    else
-      item:add(range, "Event: " .. EVENT_KINDS[kind])
-      local flags, names = {}, DATA.names["comm_event_" .. kind]
-      for mask, name in pairs(names) do
-        if set(byte, mask) then flags[#flags + 1] = mask end
+    item:add(range, "Event: " .. event[1])
+    if event[2] > 0 then
+      local under = item:add(range, "Flags")
+      for _, bit in ipairs(DATA.event_bits[event[2]]) do
+        local value = set(byte, bit[1]) and 1 or 0
+        under:add(range, format(bit[2], value, value))
       end
-      table.sort(flags)
-      local under = item:add(range, format("Flags (%d)", #flags))
-      for index, mask in ipairs(flags) do under:add(range, format("[%d]: %s", index - 1, names[mask])) end
     end
   end
 end
@@ -11015,8 +11277,8 @@ local function conversation_state(transport, pinfo)
   return stream_of(udp_states, transport .. (a < b and a .. " " .. b or b .. " " .. a))
 end
 
--- Transport port types (Wireshark's port_type enum): TCP 2, UDP 3.
-local PT_TCP, PT_UDP = 2, 3
+-- A stream's key by its transport's port type (Wireshark's port_type enum: TCP 2, UDP 3).
+local TRANSPORTS = { [2] = "tcp ", [3] = "udp " }
 
 -- A pcapng of several interfaces (mergecap -I none) holds several buses, as vw3-decode reads them: with
 -- VW3_INTERFACES=1 in the environment, each interface's records are a stream of their own (interface 0:
@@ -11039,9 +11301,8 @@ local function serial_state(pinfo)
 end
 
 function proto.dissector(tvb, pinfo, tree)
-  local port_type = pinfo_port_type(pinfo)
-  if port_type == PT_TCP then return dissect_records(conversation_state("tcp ", pinfo), tvb, pinfo, tree) end
-  if port_type == PT_UDP then return dissect_records(conversation_state("udp ", pinfo), tvb, pinfo, tree) end
+  local transport = TRANSPORTS[pinfo_port_type(pinfo)]
+  if transport ~= nil then return dissect_records(conversation_state(transport, pinfo), tvb, pinfo, tree) end
   return dissect_records(INTERFACE and serial_state(pinfo) or state, tvb, pinfo, tree)
 end
 

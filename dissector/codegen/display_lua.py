@@ -16,6 +16,7 @@ from dissector.codegen.decode_lua import WIDTH, _key, _wrap
 from dissector.codegen.fields_lua import info_forms
 from dissector.codegen.lua import lua_literal
 from dissector.codegen.rules_lua import rules_data
+from dissector.decode.fields import comm_event, event_bit_lines, event_kind
 from dissector.errors import GenerateError
 from dissector.protocol import table
 
@@ -107,7 +108,8 @@ def render_display() -> list[str]:
     """The Lua lines, inside the generated block, that define DATA.info_forms (below), DATA.field_places (by
     layout, where each field begins and its size: field_places) and DATA.bit_windows (table.bit_windows: the
     codes whose request or answer carries bits, its lifting rule's values "bits" or "coil": its window's
-    addresses are bits')."""
+    addresses are bits') and DATA.event_bits (by FC12 event kind, each bit's mask and tshark's line), DATA.comm_events (by event
+    byte, its name and kind: decode/fields.py comm_event, event_kind)."""
     rules = rules_data()
     lines = ["DATA.field_places = {"]
     for layout, shape in rules["layouts"].items():
@@ -116,7 +118,12 @@ def render_display() -> list[str]:
         lines += _wrap(f"  {_field_key(layout)} = {{ ", places, ", ", " },", "  ") if places else [
             f"  {_field_key(layout)} = {{}},"]
     bit_windows = ", ".join(f"[{code}] = true" for code in sorted(table.bit_windows()))
-    return [*render_info_forms(), *lines, "}", f"DATA.bit_windows = {{ {bit_windows} }}"]
+    # (FC12's event bits, tshark's line of each with %d for its value: decode/fields.py event_bit_lines)
+    event_bits = {kind: [[mask, line.replace("{}", "%d")] for mask, line in bits]
+                  for kind, bits in event_bit_lines().items()}
+    events = {byte: [comm_event(byte)["event"], event_kind(byte)] for byte in range(256)}  # (its name and kind)
+    return [*render_info_forms(), *lines, "}", f"DATA.bit_windows = {{ {bit_windows} }}",
+            f"DATA.event_bits = {lua_literal(event_bits)}", f"DATA.comm_events = {lua_literal(events)}"]
 
 
 def render_info_forms() -> list[str]:

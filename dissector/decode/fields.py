@@ -103,14 +103,45 @@ _EVENTS = SPEC.names["comm_event"]
 _EVENT_KINDS = sorted(SPEC.names["comm_event_kind"].items(), reverse=True)  # (bit, name), the highest first
 
 
+def event_kind(byte: int) -> int:
+    """The kind of an FC12 event byte: the bit of [names.comm_event_kind] it sets (the highest first), 0 for
+    none."""
+    return next((bit for bit, _name in _EVENT_KINDS if bit and byte & bit), 0)
+
+
 def comm_event(byte: int) -> dict[str, Any]:
     """One FC12 event byte (Application Protocol 6.13) as data/modbus.toml [names.comm_event*] name it:
-    {"byte", "event", "flags"}; flags, the kind's bits set, named (None for an event of no kind)."""
-    for bit, name in _EVENT_KINDS:
-        if bit and byte & bit:
-            flags = SPEC.names[f"comm_event_{bit}"]
-            return {"byte": byte, "event": name, "flags": [flag for mask, flag in sorted(flags.items()) if byte & mask]}
+    {"byte", "event", "flags"}; flags, the kind's bits set, named (None for an event of no kind). (The
+    plugin's tree names the events by this: DATA.comm_events, codegen/display_lua.py)"""
+    kind = event_kind(byte)
+    if kind:
+        flags = SPEC.names[f"comm_event_{kind}"]
+        return {"byte": byte, "event": SPEC.names["comm_event_kind"][kind],
+                "flags": [flag for mask, flag in sorted(flags.items()) if byte & mask]}
     return {"byte": byte, "event": _EVENTS.get(byte, _EVENT_KINDS[-1][1]), "flags": None}
+
+
+def event_bit_lines() -> dict[int, list[tuple[int, str]]]:
+    """By event kind (its bit), each bit of that kind as (mask, line): tshark -V's Modbus/TCP line of the bit
+    with `{}` where the bit's value goes, twice (`.... ..{}. = Communication Error: {}`), the lowest bit
+    first. -V (comm_event_bits) and the plugin's tree (DATA.event_bits, codegen/display_lua.py) fill them."""
+    lines: dict[int, list[tuple[int, str]]] = {}
+    for kind in SPEC.names["comm_event_kind"]:
+        if kind:
+            for mask, flag in sorted(SPEC.names[f"comm_event_{kind}"].items()):
+                marks = ["{}" if mask & place else "." for place in (128, 64, 32, 16, 8, 4, 2, 1)]
+                line = "".join(marks[:4]) + " " + "".join(marks[4:]) + f" = {flag}: {{}}"
+                lines.setdefault(kind, []).append((mask, line))
+    return lines
+
+
+_EVENT_BITS = event_bit_lines()
+
+
+def comm_event_bits(byte: int) -> list[str]:
+    """Each bit of an FC12 event's kind, set or not, as tshark -V lists it (`.... ..0. = Communication
+    Error: 0`); none for an event of no kind."""
+    return [line.format(*[1 if byte & mask else 0] * 2) for mask, line in _EVENT_BITS.get(event_kind(byte), ())]
 
 
 COIL_ON, COIL_OFF = 0xFF00, 0x0000

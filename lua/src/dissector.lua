@@ -154,8 +154,8 @@ local function conversation_state(transport, pinfo)
   return stream_of(udp_states, transport .. (a < b and a .. " " .. b or b .. " " .. a))
 end
 
--- Transport port types (Wireshark's port_type enum): TCP 2, UDP 3.
-local PT_TCP, PT_UDP = 2, 3
+-- A stream's key by its transport's port type (Wireshark's port_type enum: TCP 2, UDP 3).
+local TRANSPORTS = { [2] = "tcp ", [3] = "udp " }
 
 -- A pcapng of several interfaces (mergecap -I none) holds several buses, as vw3-decode reads them: with
 -- VW3_INTERFACES=1 in the environment, each interface's records are a stream of their own (interface 0:
@@ -178,9 +178,8 @@ local function serial_state(pinfo)
 end
 
 function proto.dissector(tvb, pinfo, tree)
-  local port_type = pinfo_port_type(pinfo)
-  if port_type == PT_TCP then return dissect_records(conversation_state("tcp ", pinfo), tvb, pinfo, tree) end
-  if port_type == PT_UDP then return dissect_records(conversation_state("udp ", pinfo), tvb, pinfo, tree) end
+  local transport = TRANSPORTS[pinfo_port_type(pinfo)]
+  if transport ~= nil then return dissect_records(conversation_state(transport, pinfo), tvb, pinfo, tree) end
   return dissect_records(INTERFACE and serial_state(pinfo) or state, tvb, pinfo, tree)
 end
 

@@ -183,37 +183,25 @@ local function add_text_or_bytes(t, tvb, f, b, at, size, as_text, as_bytes)
   else t:add(as_bytes, bytes_range(tvb, f, b, at, size)) end
 end
 
--- FC12's events (b[at..at+size-1], newest first) named as vw3-decode -V names them (decode/fields.py
--- comm_event, data/modbus.toml [names.comm_event*]): a kind's bit set (the highest first) names the event and
--- its bits set; else the byte's own name, or kind 0's. (Text items: the bytes' field is vw3.events.)
-local EVENTS, EVENT_KINDS = DATA.names.comm_event, DATA.names.comm_event_kind
-local KIND_BITS = {}
-for kind_bit in pairs(EVENT_KINDS) do if kind_bit > 0 then KIND_BITS[#KIND_BITS + 1] = kind_bit end end
-table.sort(KIND_BITS, function(x, y) return x > y end)
-
+-- FC12's events (b[at..at+size-1], newest first) named as vw3-decode -V names them: DATA.comm_events[byte], its
+-- name and kind (decode/fields.py comm_event, event_kind: data/modbus.toml [names.comm_event*]); an event of a
+-- kind each bit of that kind, set or not, as tshark -V (DATA.event_bits: decode/fields.py event_bit_lines).
+-- (Text items: the bytes' field is vw3.events.)
 local function set(byte, mask) return floor(byte / mask) % 2 == 1 end -- (mask: a power of two)
 
 local function add_events(t, tvb, f, b, at, size)
   local list = t:add(frame_range(tvb, f, at, size), format("Event list (%d)", size))
   for k = 0, size - 1 do
     local byte, range = b[at + k], frame_range(tvb, f, at + k, 1)
-    local item = list:add(range, format("[%d]", k))
+    local item, event = list:add(range, format("[%d]", k)), DATA.comm_events[byte]
     item:add(range, format("Byte: %d (0x%X)", byte, byte))
-    local kind = nil
-    for _, kind_bit in ipairs(KIND_BITS) do
-      if set(byte, kind_bit) then kind = kind_bit break end
-    end
-    if kind == nil then
-      item:add(range, "Event: " .. (EVENTS[byte] or EVENT_KINDS[0]))
-    else
-      item:add(range, "Event: " .. EVENT_KINDS[kind])
-      local flags, names = {}, DATA.names["comm_event_" .. kind]
-      for mask, name in pairs(names) do
-        if set(byte, mask) then flags[#flags + 1] = mask end
+    item:add(range, "Event: " .. event[1])
+    if event[2] > 0 then
+      local under = item:add(range, "Flags")
+      for _, bit in ipairs(DATA.event_bits[event[2]]) do
+        local value = set(byte, bit[1]) and 1 or 0
+        under:add(range, format(bit[2], value, value))
       end
-      table.sort(flags)
-      local under = item:add(range, format("Flags (%d)", #flags))
-      for index, mask in ipairs(flags) do under:add(range, format("[%d]: %s", index - 1, names[mask])) end
     end
   end
 end

@@ -38,5 +38,8 @@ def test_the_plugin_names_each_event_as_vw3_decode(tmp_path: Path) -> None:
     result = run_tshark(pcap, "-V")
     assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr), result.stderr[-2000:]
     wanted = _events(python)
-    assert len(wanted) == 31 and wanted[1] == "Event list (6)" and wanted[-1] == "        Flags (0)"
+    # (a receive event of no flag, 0x80: its four bits each 0, as tshark -V lists them; `Flags (0)` alone before)
+    assert len(wanted) == 37 and wanted[1] == "Event list (6)" and wanted[-5:] == [
+        "        Flags", "            .... ..0. = Communication Error: 0", "            ...0 .... = Character Overrun: 0",
+        "            ..0. .... = Currently in Listen Only Mode: 0", "            .0.. .... = Broadcast Received: 0"]
     assert _events(result.stdout) == wanted

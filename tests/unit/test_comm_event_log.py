@@ -33,23 +33,29 @@ EVENT_LINES = """\
             [3]
                 Byte: 194 (0xC2)
                 Event: Receive Event
-                Flags (2)
-                    [0]: Communication Error
-                    [1]: Broadcast Received
+                Flags
+                    .... ..1. = Communication Error: 1
+                    ...0 .... = Character Overrun: 0
+                    ..0. .... = Currently in Listen Only Mode: 0
+                    .1.. .... = Broadcast Received: 1
             [4]
                 Byte: 127 (0x7F)
                 Event: Send Event
-                Flags (6)
-                    [0]: Read Exception Sent
-                    [1]: Slave Abort Exception Sent
-                    [2]: Slave Busy Exception Sent
-                    [3]: Slave Program NAK Exception Sent
-                    [4]: Write Timeout Error Occurred
-                    [5]: Currently in Listen Only Mode
+                Flags
+                    .... ...1 = Read Exception Sent: 1
+                    .... ..1. = Slave Abort Exception Sent: 1
+                    .... .1.. = Slave Busy Exception Sent: 1
+                    .... 1... = Slave Program NAK Exception Sent: 1
+                    ...1 .... = Write Timeout Error Occurred: 1
+                    ..1. .... = Currently in Listen Only Mode: 1
             [5]
                 Byte: 128 (0x80)
                 Event: Receive Event
-                Flags (0)
+                Flags
+                    .... ..0. = Communication Error: 0
+                    ...0 .... = Character Overrun: 0
+                    ..0. .... = Currently in Listen Only Mode: 0
+                    .0.. .... = Broadcast Received: 0
         CRC: """
 
 EVENTS = [
@@ -111,8 +117,9 @@ def _tshark_events(tmp_path: Path) -> list[dict[str, object]]:
     for line in tree[tree.index("    Events\n"):].splitlines()[1:]:
         if line.startswith("        ") and not line.startswith("         "):
             name = re.sub(r": 0x[0-9A-F]{2}$", "", line.strip())
-            events.append({"event": name, "flags": []})
+            events.append({"event": name, "flags": [], "bits": []})
         elif line.startswith("            ") and events:
+            events[-1]["bits"].append(line.strip())  # type: ignore[union-attr]
             flag, value = re.match(r".* = (.*): (\d)$", line).groups()
             if value == "1":
                 events[-1]["flags"].append(flag)  # type: ignore[union-attr]
@@ -125,4 +132,25 @@ def _tshark_events(tmp_path: Path) -> list[dict[str, object]]:
 def test_names_as_tsharks(tmp_path: Path) -> None:
     said = json.loads(run_cli(["-n", "--json", str(_capture(tmp_path))])[1].splitlines()[1])["fields"]
     ours = [{"event": event["event"], "flags": event.get("flags", [])} for event in said.get("event_list", [])]
-    assert _tshark_events(tmp_path) == ours
+    assert [{"event": event["event"], "flags": event["flags"]} for event in _tshark_events(tmp_path)] == ours
+
+
+@pytest.mark.skipif(not all(map(shutil.which, ("tshark", "text2pcap", "mergecap"))), reason="no tshark")
+def test_flag_bits_as_tsharks(tmp_path: Path) -> None:
+    """-V lists each bit of a receive or send event, set or not, in tshark -V's words: a receive event of no
+    flag (0x80) its four bits each 0, where it said `Flags (0)` alone before."""
+    out = run_cli(["-n", "-V", str(_capture(tmp_path))])[1].splitlines()
+    ours: list[list[str]] = []
+    for index, line in enumerate(out):
+        if line.strip().startswith("Event: "):
+            ours.append([])
+        elif line.strip() == "Flags":
+            depth = len(line) - len(line.lstrip())
+            for inner in out[index + 1:]:
+                if len(inner) - len(inner.lstrip()) <= depth:
+                    break
+                ours[-1].append(inner.strip())
+    theirs = [event["bits"] for event in _tshark_events(tmp_path)]
+    assert theirs[5] == [".... ..0. = Communication Error: 0", "...0 .... = Character Overrun: 0",
+                         "..0. .... = Currently in Listen Only Mode: 0", ".0.. .... = Broadcast Received: 0"]
+    assert ours == theirs
