@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 from construct import ListContainer
 
+from dissector.decode.fields import comm_event_bits
 from dissector.model import BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
@@ -256,6 +257,10 @@ def _field_lines(detail: _Detail, depth: int, name: str, value: Any) -> None:
         texts.append(label)
         for key, inner in value.items():
             if key.startswith("_") or inner is None or (key == "trailing" and not inner):
+                continue
+            if key == "flags" and "event" in value:  # (FC12's event: each bit of its kind, as tshark -V)
+                texts.append(_INDENT[depth + 1] + "Flags")
+                texts.extend(_INDENT[depth + 2] + line for line in comm_event_bits(value["byte"]))
                 continue
             _field_lines(detail, depth + 1, key, inner)
     elif isinstance(value, list):
