@@ -30,11 +30,8 @@ typedef struct {
     double y;
 } Point;
 
-static size_t trend_hash(const void *key) { return (size_t)mix(*(const uint32_t *)key); }
-static size_t point_hash(const void *key) { return (size_t)mix(*(const uint64_t *)key); }
-
-static const DenseKind TREND_KIND = {sizeof(Trend), sizeof(uint32_t), 96, trend_hash};
-static const DenseKind POINT_KIND = {sizeof(Point), sizeof(uint64_t), 768, point_hash};
+static const DenseKind TREND_KIND = {sizeof(Trend), sizeof(uint32_t), 96, param_hash}; /* (a param_key) */
+static const DenseKind POINT_KIND = {sizeof(Point), sizeof(uint64_t), 768, key_hash};
 
 /* An x axis of COLUMNS pixel columns, ReportCollector's or Health's: from its first x, doubled by the
  * Python side (_double) whenever an x reaches its limit. */

@@ -155,6 +155,8 @@ static uint64_t mix(uint64_t key) { /* splitmix64's finaliser: keys differ in a 
     return key ^ (key >> 31);
 }
 
+static size_t key_hash(const void *key) { return (size_t)mix(*(const uint64_t *)key); } /* (a 64-bit key) */
+
 /* ---- Python objects made in C: dict[key] = value and list.append(item) of new references, which they release
  * (NULL: the error of making one, already set): 0, or -1 with an exception set. ---------------------------- */
 static int dict_put(PyObject *dict, PyObject *key, PyObject *value) {
@@ -888,8 +890,7 @@ static int write_memory(Engine *e) {
     return status;
 }
 
-static size_t piece_hash(const void *key) { return (size_t)mix(*(const uint64_t *)key); }
-static const DenseKind PIECE_KIND = {sizeof(PieceSlot), sizeof(uint64_t), 3072, piece_hash};
+static const DenseKind PIECE_KIND = {sizeof(PieceSlot), sizeof(uint64_t), 3072, key_hash};
 
 static void pieces_clear(Engine *e) {
     for (size_t k = 0; k < e->pieces.count; k++) Py_DECREF(((PieceSlot *)e->pieces.items)[k].text);
