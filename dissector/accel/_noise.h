@@ -9,145 +9,27 @@
  * skip_noise adds the noise to the framer's run; tests/differential/test_noise_span.py holds the outputs equal
  * to the Python stages'. Included by _summary.c, after its framing helpers. */
 
-typedef struct {
-    const uint8_t *b;
-    Py_ssize_t size;                       /* the framer's buffer and its length */
-    int expect_slave, expect_function;     /* the answer awaited (rules.Awaiting._expect), -1: none */
-    const uint8_t *echo;                   /* what it must repeat of its request (_echo) */
-    Py_ssize_t echo_length;
-    int glitchy;                           /* StreamFramer.glitchy */
-    const Py_ssize_t *ends, *starts;       /* record ends (_boundaries) and starts (_record_starts), ascending, */
-    Py_ssize_t end_count, start_count;     /* as buffer indexes */
-    signed char *ends_record;              /* by record end: nz_ends_record's answer, -1 not asked yet (the */
-} NoiseLine;                               /* framer's _ends_memo: the buffer and the state stay in one call) */
-
 enum { NZ_NEED = -1, NZ_NONE = 0 }; /* a length found, or these (rules.py NEED, NONE) */
 
-/* The first index of the sorted `at` (count) not below j. */
-static Py_ssize_t nz_lower(const Py_ssize_t *at, Py_ssize_t count, Py_ssize_t j) {
-    Py_ssize_t low = 0, high = count;
-    while (low < high) {
-        Py_ssize_t middle = (low + high) / 2;
-        if (at[middle] < j) low = middle + 1;
-        else high = middle;
-    }
-    return low;
-}
-
-static int nz_member(const Py_ssize_t *at, Py_ssize_t count, Py_ssize_t j) {
-    Py_ssize_t k = nz_lower(at, count, j);
-    return k < count && at[k] == j;
-}
-
-/* StreamFramer._boundary_at, _record_starts_at. */
-static inline int nz_bound(const NoiseLine *L, Py_ssize_t j) { return L->end_count && nz_member(L->ends, L->end_count, j); }
-static inline int nz_start(const NoiseLine *L, Py_ssize_t j) { return L->start_count && nz_member(L->starts, L->start_count, j); }
-
-/* Offsets.first_after: the first record end o with low < o <= high, or -1. */
-static Py_ssize_t nz_end_after(const NoiseLine *L, Py_ssize_t low, Py_ssize_t high) {
-    Py_ssize_t k = nz_lower(L->ends, L->end_count, low + 1);
-    return k < L->end_count && L->ends[k] <= high ? L->ends[k] : -1;
-}
-
-/* rules.Awaiting._awaited: the answer awaited starts at i (its echo compared as far as the buffer goes). */
-static int nz_awaited(const NoiseLine *L, Py_ssize_t i) {
-    int function = L->b[i + 1];
-    if (L->b[i] != L->expect_slave || (function & 0x7F) != L->expect_function) return 0;
-    if (!L->echo_length || function & 0x80) return 1;
-    Py_ssize_t got = L->size - (i + 2);
-    got = got < 0 ? 0 : got < L->echo_length ? got : L->echo_length;
-    return memcmp(L->b + i + 2, L->echo, (size_t)got) == 0;
+/* StreamFramer._record_starts_at. */
+static inline int nz_start(const Line *L, Py_ssize_t j) {
+    Py_ssize_t k = lower_index(L->starts, L->start_count, j);
+    return k < L->start_count && L->starts[k] == j;
 }
 
 /* The kind of interpretation r of layouts() (the exception's; the awaited answer's first, the other, the
  * request by its quantity). */
-static int nz_kind(int function, int awaited, int r) {
+static int nz_kind(int function, int expected, int r) {
     if (function & 0x80) return KIND_EXCEPTION;
     if (r == 2) return KIND_REQUEST;
-    return (r == 0) == !!awaited ? KIND_RESPONSE : KIND_REQUEST;
-}
-
-/* RecordEnds._ends_record: a layout at j checks out and ends at a record's end (a scanned one: that end). */
-static int nz_ends_record(const NoiseLine *L, Py_ssize_t j, Py_ssize_t n) {
-    const LengthRule *rules[3];
-    int count = layouts(L->b[j + 1], nz_awaited(L, j), rules);
-    for (int r = 0; r < count; r++) {
-        Length found = rule_length(rules[r], L->b, j, n);
-        Py_ssize_t length = found.what == LENGTH_NEED ? NZ_NEED : found.value;
-        if (found.what == LENGTH_SCAN) {
-            Py_ssize_t end = nz_end_after(L, j, n);
-            length = end >= 0 && end - j >= found.value ? end - j : NZ_NONE;
-        }
-        if (length >= MIN_ADU && length <= MAX_ADU && j + length <= n && nz_bound(L, j + length) && crc_ok(L->b, j, length))
-            return 1;
-    }
-    return 0;
-}
-
-/* RecordEnds._framed_reach: where a CRC scan from i stops, the first record end after i that is a frame of its
- * own (within MAX_ADU), else n. */
-static Py_ssize_t nz_reach(const NoiseLine *L, Py_ssize_t i, Py_ssize_t n) {
-    Py_ssize_t high = n - MIN_ADU + 1 < i + MAX_ADU ? n - MIN_ADU + 1 : i + MAX_ADU;
-    for (Py_ssize_t k = nz_lower(L->ends, L->end_count, i + 1); k < L->end_count && L->ends[k] < high; k++) {
-        if (L->ends_record[k] < 0) L->ends_record[k] = (signed char)nz_ends_record(L, L->ends[k], n);
-        if (L->ends_record[k]) return L->ends[k];
-    }
-    return n;
-}
-
-/* RecordEnds._crosses_framed_record (length NZ_NEED: more than there are). */
-static int nz_crosses(const NoiseLine *L, Py_ssize_t i, Py_ssize_t length, Py_ssize_t n) {
-    if (!L->end_count) return 0;
-    Py_ssize_t reach = nz_reach(L, i, n);
-    return reach < (length == NZ_NEED ? n : (n < i + length ? n : i + length));
-}
-
-/* RtuFramer._valid_frame_at with the bytes up to n: 1 an intact frame at j, 0 none, -1 more bytes needed;
- * `scan` 0: layouts without a length rule not tried. */
-static int nz_valid_frame_at(const NoiseLine *L, Py_ssize_t j, Py_ssize_t n, int final, int scan) {
-    if (n - j < MIN_ADU) return final ? j == n : -1;
-    const LengthRule *rules[3];
-    int count = layouts(L->b[j + 1], nz_awaited(L, j), rules), undecided = 0;
-    for (int r = 0; r < count; r++) {
-        Length found = rule_length(rules[r], L->b, j, n);
-        if (found.what == LENGTH_SCAN) {
-            if (!scan) continue;
-            Py_ssize_t reach = L->end_count ? nz_reach(L, j, n) : n;
-            CrcScan crcs = crc_scan(L->b, j, found.value, reach - j < MAX_ADU ? reach - j : MAX_ADU); /* _shortest_crc */
-            if (crc_next(&crcs)) return 1;
-            undecided = undecided || (!final && reach == n && n - j < MAX_ADU);
-            continue;
-        }
-        if (found.what == LENGTH_NEED) {
-            if (final || !nz_crosses(L, j, NZ_NEED, n)) return final ? 0 : -1;
-            continue;
-        }
-        Py_ssize_t length = found.value;
-        if (length < MIN_ADU || length > MAX_ADU) continue;
-        if (j + length > n) {
-            if (final || nz_crosses(L, j, length, n)) continue;
-            return -1;
-        }
-        if (crc_ok(L->b, j, length)) return 1;
-    }
-    return undecided ? -1 : 0;
-}
-
-/* RtuFramer._followed, not final: a record's end or an intact frame at `end`, or after a few glitch bytes. */
-static int nz_followed(const NoiseLine *L, Py_ssize_t end) {
-    for (Py_ssize_t j = end;; j++) {
-        if (nz_bound(L, j)) return 1;
-        int found = nz_valid_frame_at(L, j, L->size, 0, 1);
-        if (found != 0) return found;
-        if (!(j < L->size && glitch_bytes[L->b[j]] && j - end < GLITCH_SKIP)) return 0;
-    }
+    return (r == 0) == !!expected ? KIND_RESPONSE : KIND_REQUEST;
 }
 
 /* Bounded._intact_inside: a frame with a length rule and a good CRC starts inside i..i+length. */
-static int nz_intact_inside(const NoiseLine *L, Py_ssize_t i, Py_ssize_t length, Py_ssize_t n, int final) {
+static int nz_intact_inside(const Line *L, Py_ssize_t i, Py_ssize_t length, Py_ssize_t n, int final) {
     int undecided = 0;
     for (Py_ssize_t j = i + 1; j < i + length; j++) {
-        int found = nz_valid_frame_at(L, j, n, final, 0);
+        int found = valid_frame_at(L, j, n, final, 0);
         if (found == 1) return 1;
         undecided = undecided || found < 0;
     }
@@ -156,48 +38,10 @@ static int nz_intact_inside(const NoiseLine *L, Py_ssize_t i, Py_ssize_t length,
 
 /* Bounded._framed_inside, not final: _intact_inside up to the reading's end where records that are frames
  * bound it there. */
-static int nz_framed_inside(const NoiseLine *L, Py_ssize_t i, Py_ssize_t length) {
+static int framed_inside(const Line *L, Py_ssize_t i, Py_ssize_t length) {
     Py_ssize_t end = i + length, n = L->size;
-    int bounded = nz_bound(L, end) && (nz_start(L, i) || (n - end >= MIN_ADU && nz_ends_record(L, end, n)));
+    int bounded = line_bound(L, end) && (nz_start(L, i) || (n - end >= MIN_ADU && ends_record(L, end, n)));
     return nz_intact_inside(L, i, length, bounded ? end : n, bounded);
-}
-
-/* RtuFramer._scan with a noise run open: the shortest CRC match the line confirms and no intact frame is
- * inside, NZ_NEED, or NZ_NONE. */
-static Py_ssize_t nz_scan(const NoiseLine *L, Py_ssize_t i, Py_ssize_t minimum) {
-    Py_ssize_t n = L->size, reach = L->end_count ? nz_reach(L, i, n) : n;
-    Py_ssize_t maximum = reach - i < MAX_ADU ? reach - i : MAX_ADU;
-    for (int glitches = L->glitchy ? 1 : 0; glitches < 2; glitches++) {
-        CrcScan crcs = crc_scan(L->b, i, minimum, maximum);
-        for (Py_ssize_t length; (length = crc_next(&crcs)) != 0;) {
-            int following = glitches ? nz_followed(L, i + length)
-                            : nz_bound(L, i + length) ? 1 : nz_valid_frame_at(L, i + length, n, 0, 1);
-            if (following < 0) return NZ_NEED;
-            if (following) {
-                int inside = nz_framed_inside(L, i, length);
-                if (inside < 0) return NZ_NEED;
-                if (!inside) return length;
-            }
-        }
-    }
-    return reach == n && n - i < MAX_ADU ? NZ_NEED : NZ_NONE;
-}
-
-/* The length a scanned layout's own fields declare (rules.Scan.declared): the FC43/14 object list's walk
- * (rules.py _mei_objects), NZ_NEED where it runs past the bytes there; NZ_NONE for a plain scan. */
-static Py_ssize_t nz_declared(const LengthRule *rule, const uint8_t *b, Py_ssize_t i, Py_ssize_t n) {
-    if (rule->special == RULE_SELECT) { /* (its field has come: rule_length gave a scan) */
-        Py_ssize_t value = field(b + i, rule->position, rule->width);
-        return nz_declared(&selected_rule[value == rule->value ? rule->chosen : rule->otherwise], b, i, n);
-    }
-    if (rule->special != RULE_MEI_OBJECTS) return NZ_NONE;
-    Py_ssize_t stop = rule->extra;
-    for (int k = b[i + rule->position]; k > 0; k--) {
-        if (i + stop + 1 >= n) return NZ_NEED;
-        stop += 2 + b[i + stop + 1];
-        if (stop > MAX_ADU) return NZ_NONE;
-    }
-    return stop + 2;
 }
 
 /* rtu._counts_nothing: a counted layout of the code (its request's or response's) whose count is 0. */
@@ -213,12 +57,12 @@ enum { NZ_TAKE = 0, NZ_NOISE = 1, NZ_WAIT = 2 };
 
 /* Bounded._bounded_run from a record's start or end (a frame's end never falls inside an open noise run):
  * NZ_NOISE no run there, NZ_WAIT bytes to come, NZ_TAKE a run. */
-static int nz_bounded_run(const NoiseLine *L, Py_ssize_t i) {
-    if (!nz_bound(L, i) && !nz_start(L, i)) return NZ_NOISE;
-    Py_ssize_t n = L->size, end = nz_end_after(L, i, n), stop = end >= 0 ? end : n;
+static int nz_bounded_run(const Line *L, Py_ssize_t i) {
+    if (!line_bound(L, i) && !nz_start(L, i)) return NZ_NOISE;
+    Py_ssize_t n = L->size, end = line_end_after(L, i, n), stop = end >= 0 ? end : n;
     int last = end >= 0;
     for (Py_ssize_t e = i + 1; e <= (stop < i + MAX_ADU ? stop : i + MAX_ADU); e++) {
-        int found = nz_valid_frame_at(L, e, stop, last, 0);
+        int found = valid_frame_at(L, e, stop, last, 0);
         if (found < 0) return NZ_WAIT;
         if (found) return e - i >= MIN_ADU && crc_ok(L->b, i, e - i) ? NZ_TAKE : NZ_NOISE;
     }
@@ -228,50 +72,50 @@ static int nz_bounded_run(const NoiseLine *L, Py_ssize_t i) {
 /* RtuFramer._match at i with a noise run open, not final: NZ_NOISE (its NONE), NZ_WAIT (NEED), NZ_TAKE (a
  * reading with a good CRC), or NZ_DAMAGED (a damaged frame it shows). */
 enum { NZ_DAMAGED = 3 };
-static int nz_match(const NoiseLine *L, Py_ssize_t i) {
+static int nz_match(const Line *L, Py_ssize_t i) {
     const uint8_t *b = L->b;
     Py_ssize_t n = L->size;
     int slave = b[i], function = b[i + 1];
     if (glitch_bytes[slave] && (slave == 0 || slave > MAX_SLAVE)) { /* rules.GLITCH_ADDRESSES */
-        int after = nz_valid_frame_at(L, i + 1, n, 0, 1);
+        int after = valid_frame_at(L, i + 1, n, 0, 1);
         if (after > 0) return NZ_NOISE; /* a glitch byte before a frame */
-        if (after < 0 && !nz_ends_record(L, i, n)) return NZ_WAIT;
+        if (after < 0 && !ends_record(L, i, n)) return NZ_WAIT;
     }
-    int awaited = nz_awaited(L, i), waiting = 0, damaged = 0;
+    int expected = awaited(L, i), waiting = 0, damaged = 0;
     Py_ssize_t damaged_length[3];
     const LengthRule *rules[3];
-    int count = layouts(function, awaited, rules);
+    int count = layouts(function, expected, rules);
     for (int r = 0; r < count; r++) {
         Length found = rule_length(rules[r], b, i, n);
         if (found.what == LENGTH_SCAN) {
-            Py_ssize_t length = nz_scan(L, i, found.value), declared;
+            Py_ssize_t length = scan_length(L, i, n, found.value, 1), declared = found.declared;
             if (length == NZ_NEED) waiting++;
             else if (length) return NZ_TAKE;
-            else if ((declared = nz_declared(rules[r], b, i, n)) >= MIN_ADU && declared <= MAX_ADU && declared <= n - i)
+            else if (declared >= MIN_ADU && declared <= MAX_ADU && declared <= n - i) /* (rules.Scan.declared) */
                 damaged_length[damaged++] = declared;
             continue;
         }
         Py_ssize_t length = found.what == LENGTH_NEED ? NZ_NEED : found.value;
         if (length != NZ_NEED && (length < MIN_ADU || length > MAX_ADU)) continue;
         if (length == NZ_NEED || i + length > n) {
-            waiting += !nz_crosses(L, i, length, n);
+            waiting += !crosses_framed_record(L, i, length, n);
             continue;
         }
         if (crc_ok(b, i, length)) return NZ_TAKE;
-        if (!nz_counts_nothing(function, nz_kind(function, awaited, r), length)) damaged_length[damaged++] = length;
+        if (!nz_counts_nothing(function, nz_kind(function, expected, r), length)) damaged_length[damaged++] = length;
     }
     if (waiting) return NZ_WAIT;
     if (slave > MAX_SLAVE || (slave == 0 && not_broadcast[function])) return NZ_NOISE;
     if (glitch_bytes[slave]) {
-        int after = nz_valid_frame_at(L, i + 1, n, 0, 1);
+        int after = valid_frame_at(L, i + 1, n, 0, 1);
         if (after) return after > 0 ? NZ_NOISE : NZ_WAIT;
     }
     for (int k = 0; k < damaged; k++) {
-        if (nz_crosses(L, i, damaged_length[k], n)) continue;
-        int following = nz_followed(L, i + damaged_length[k]);
+        if (crosses_framed_record(L, i, damaged_length[k], n)) continue;
+        int following = followed(L, i + damaged_length[k], n);
         if (following < 0) return NZ_WAIT;
         if (following) {
-            int inside = nz_framed_inside(L, i, damaged_length[k]);
+            int inside = framed_inside(L, i, damaged_length[k]);
             if (inside < 0) return NZ_WAIT;
             if (!inside) return NZ_DAMAGED;
         }
@@ -281,7 +125,7 @@ static int nz_match(const NoiseLine *L, Py_ssize_t i) {
 
 /* What RtuFramer._run, a noise run open, not final, makes of position i (a known code after it): _match, then
  * where it finds no frame or a damaged one, a run the line bounds (_take_bounded) first. */
-static int nz_take(const NoiseLine *L, Py_ssize_t i) {
+static int nz_take(const Line *L, Py_ssize_t i) {
     int match = nz_match(L, i);
     if (match == NZ_WAIT || match == NZ_TAKE) return match;
     int bounded = nz_bounded_run(L, i);
@@ -292,7 +136,7 @@ static int nz_take(const NoiseLine *L, Py_ssize_t i) {
  * it waits for bytes to come there. Where no known code follows a byte it skips to the next byte pair that
  * may start a frame (its _POSSIBLE_START, or the buffer's last byte) in one step, which must end by `limit`;
  * elsewhere _match decides. */
-static Py_ssize_t noise_span(const NoiseLine *L, Py_ssize_t start, Py_ssize_t limit, int *wait) {
+static Py_ssize_t noise_span(const Line *L, Py_ssize_t start, Py_ssize_t limit, int *wait) {
     Py_ssize_t i = start, n = L->size;
     *wait = 0;
     while (i < limit) {
@@ -352,8 +196,8 @@ static PyObject *module_noise_span(PyObject *self, PyObject *args) {
     if (nz_offsets(end_list, base, &ends, &end_count) == 0 && nz_offsets(start_list, base, &starts, &start_count) == 0
         && ((memo = PyMem_Malloc((size_t)end_count + 1)) != NULL || (PyErr_NoMemory(), 0))) {
         memset(memo, -1, (size_t)end_count + 1);
-        NoiseLine L = {view.buf, view.len, slave, function, echo.buf, echo.len, glitchy, ends, starts, end_count,
-                       start_count, memo};
+        Line L = {view.buf, view.len, slave, function, echo.buf, echo.len, (char)glitchy, NULL, ends, starts,
+                  end_count, start_count, memo};
         int wait;
         Py_ssize_t end = noise_span(&L, 0, limit < view.len ? limit : view.len, &wait);
         result = Py_BuildValue("(nO)", end, wait ? Py_True : Py_False);

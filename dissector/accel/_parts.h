@@ -120,7 +120,6 @@ static PyObject *stats_rehome(Stats *st, PyObject *args) {
         return PyErr_Format(PyExc_ValueError, "rehome: slave 0..255, %d tables at most", PARAM_TABLES);
     if (tables_valid(homes, size, "rehome: tables") < 0) return NULL;
     Dense rebuilt = {0};
-    size_t parted = 0;
     for (size_t k = 0; k < st->params.count; k++) {
         Param *p = &PARAMS(st)[k];
         unsigned address = PARAM_ADDRESS(p->key);
@@ -138,11 +137,11 @@ static PyObject *stats_rehome(Stats *st, PyObject *args) {
             if (param_place(st, &rebuilt, key, p) < 0) goto failed;
             continue;
         }
-        for (int j = 0; j < n; j++) { /* taken out of the parts (zeroed, key 0: never a parameter's) first */
+        for (int j = 0; j < n; j++) { /* taken out of the parts first: zeroed in place (key 0, a parameter's never:
+                                        * no look-up finds it; it holds no reference) */
             uint32_t key = param_key(slave, only_origin(&pieces[j]), address);
             memset(dense_find(&st->parts, &PARAM_KIND, &key), 0, sizeof(Param));
         }
-        parted += (size_t)n;
         for (int j = 0; j < n; j++)
             if (param_place(st, &rebuilt, param_key(slave, (uint8_t)homes[only_origin(&pieces[j])], address),
                             &pieces[j]) < 0)
@@ -151,22 +150,6 @@ static PyObject *stats_rehome(Stats *st, PyObject *args) {
     }
     dense_free(&st->params);
     st->params = rebuilt;
-    if (!parted) Py_RETURN_NONE;
-    Dense kept = {0}; /* the parts not parted into */
-    for (size_t k = 0; k < st->parts.count; k++) {
-        Param *part = &((Param *)st->parts.items)[k];
-        if (part->key == 0) continue;
-        Param *into = dense_add(&kept, &PARAM_KIND, &part->key, 0);
-        if (into == NULL) {
-            for (size_t j = 0; j < kept.count; j++) param_release(&((Param *)kept.items)[j]);
-            dense_free(&kept);
-            return NULL;
-        }
-        *into = *part;
-        memset(part, 0, sizeof *part);
-    }
-    dense_free(&st->parts);
-    st->parts = kept;
     Py_RETURN_NONE;
 failed: /* no memory (the run ends on it): what was moved is dropped, each reference released once */
     for (size_t k = 0; k < rebuilt.count; k++) param_release(&((Param *)rebuilt.items)[k]);

@@ -39,17 +39,18 @@ static PyObject *module_scan_pcap(PyObject *self, PyObject *args) {
     long long records = 0, lowest = 0, highest = 0;
     int stop = SCAN_MORE, timed_seen = 0;
     PyObject *result = NULL;
-    /* Per record its stream offset and time and its flag byte, and the records' bytes end to end: a record
-     * takes 16 bytes of header at least, so the buffer holds n / 16 of them at most. */
+    /* Per record its stream offset and time and its flag byte, and the records' bytes end to end, in one block: a
+     * record takes 16 bytes of header at least, so the buffer holds n / 16 of them at most. */
     size_t most = (size_t)(n > 0 ? n : 0) / 16 + 1;
-    long long *starts = PyMem_Malloc(most * sizeof(long long)), *times = PyMem_Malloc(most * sizeof(long long));
-    uint8_t *flags = PyMem_Malloc(most);
-    char *data = PyMem_Malloc(most * 16);
-    if (starts == NULL || times == NULL || flags == NULL || data == NULL || pos < 0 || units <= 0) {
-        if (!PyErr_Occurred()) PyErr_SetString(pos < 0 || units <= 0 ? PyExc_ValueError : PyExc_MemoryError,
-                                               "scan_pcap: bad position or units, or no memory");
+    long long *starts = PyMem_Malloc(most * (2 * sizeof(long long) + 1 + 16));
+    if (starts == NULL || pos < 0 || units <= 0) {
+        PyErr_SetString(starts == NULL ? PyExc_MemoryError : PyExc_ValueError,
+                        "scan_pcap: bad position or units, or no memory");
         goto done;
     }
+    long long *times = starts + most;
+    uint8_t *flags = (uint8_t *)(times + most);
+    char *data = (char *)(flags + most);
     while (pos + 16 <= n) {
         uint32_t seconds = read_u32(b + pos, swapped), fraction = read_u32(b + pos + 4, swapped);
         uint32_t captured = read_u32(b + pos + 8, swapped), original = read_u32(b + pos + 12, swapped);
@@ -92,9 +93,6 @@ static PyObject *module_scan_pcap(PyObject *self, PyObject *args) {
                            pos, stop, records, offset, last, span);
 done:
     PyMem_Free(starts);
-    PyMem_Free(times);
-    PyMem_Free(flags);
-    PyMem_Free(data);
     PyBuffer_Release(&view);
     return result;
 }

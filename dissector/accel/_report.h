@@ -30,11 +30,8 @@ typedef struct {
     double y;
 } Point;
 
-static size_t trend_hash(const void *key) { return (size_t)mix(*(const uint32_t *)key); }
-static size_t point_hash(const void *key) { return (size_t)mix(*(const uint64_t *)key); }
-
-static const DenseKind TREND_KIND = {sizeof(Trend), sizeof(uint32_t), 96, trend_hash};
-static const DenseKind POINT_KIND = {sizeof(Point), sizeof(uint64_t), 768, point_hash};
+static const DenseKind TREND_KIND = {sizeof(Trend), sizeof(uint32_t), 96, param_hash}; /* (a param_key) */
+static const DenseKind POINT_KIND = {sizeof(Point), sizeof(uint64_t), 768, key_hash};
 
 /* An x axis of COLUMNS pixel columns, ReportCollector's or Health's: from its first x, doubled by the
  * Python side (_double) whenever an x reaches its limit. */
@@ -259,29 +256,17 @@ static void trend_release(Trend *t) {
     Py_CLEAR(t->columns);
 }
 
-/* A new device for this slave (its namer another: profile `auto`): its trends forgotten, their values counted
- * into their series, which the collector may have moved to other tables (ReportCollector.rehomed): the next
- * value finds its series again; its values are read again (the points cached with the old namer not asked).
- * 0, or -1 with an exception set (no memory: the trends are dropped, the run ends on it). */
+/* A new device for this slave (its namer another: profile `auto`): its trends forgotten (zeroed in place: key 0,
+ * a series' never, no look-up finds it), their values counted into their series, which the collector may have
+ * moved to other tables (ReportCollector.rehomed): the next value finds its series again; its values are read
+ * again (the points cached with the old namer not asked). 0, or -1 with an exception set. */
 static int report_device(Report *r, Slave *s, int slave) {
-    Dense kept = {0};
-    int status = 0, held = 0;
-    for (Trend *t = (Trend *)r->trends.items; !held && t < (Trend *)r->trends.items + r->trends.count; t++)
-        held = (int)PARAM_SLAVE(t->key) == slave;
-    for (Trend *t = (Trend *)r->trends.items; held && t < (Trend *)r->trends.items + r->trends.count; t++) {
-        Trend *into = NULL;
-        if ((int)PARAM_SLAVE(t->key) != slave && status == 0 &&
-            (into = dense_add(&kept, &TREND_KIND, &t->key, 0)) != NULL) {
-            *into = *t; /* (its references are into's now) */
-            continue;
-        }
-        if ((int)PARAM_SLAVE(t->key) != slave) status = -1;
-        else if (t->columns != NULL && status == 0) status = attr_add(t->series, "values", t->values);
+    int status = 0;
+    for (Trend *t = (Trend *)r->trends.items; t < (Trend *)r->trends.items + r->trends.count; t++) {
+        if ((int)PARAM_SLAVE(t->key) != slave) continue;
+        if (t->columns != NULL && status == 0) status = attr_add(t->series, "values", t->values);
         trend_release(t);
-    }
-    if (held) { /* (none of the slave's: the table stays as it is) */
-        dense_free(&r->trends);
-        r->trends = kept;
+        memset(t, 0, sizeof *t);
         r->full = 0;
     }
     Py_XSETREF(r->namers[slave], Py_XNewRef(s->namer));

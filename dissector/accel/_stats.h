@@ -460,19 +460,6 @@ static PyObject *param_text(const Param *p) {
     return text;
 }
 
-/* The parameters by (slave, address): a PyMem array of *n pointers, NULL with an exception set. */
-static Param **param_sorted(Stats *st, size_t *n) {
-    Param **order = PyMem_Malloc((st->params.count ? st->params.count : 1) * sizeof *order);
-    if (order == NULL) {
-        PyErr_NoMemory();
-        return NULL;
-    }
-    *n = 0;
-    for (size_t k = 0; k < st->params.count; k++) order[(*n)++] = &PARAMS(st)[k];
-    qsort(order, *n, sizeof *order, param_order);
-    return order;
-}
-
 /* (slave, address, code, reads, unreadable, writes, refused, last, last_text, changes, table), built item by
  * item (Py_BuildValue's format parsing was a third of the cost); last_text the text of the last value,
  * None when nothing names it; when the last state is a read status, last is None and last_text the status. */
@@ -509,9 +496,11 @@ static int same_story(const Param *a, const Param *b) {
 static PyObject *stats_table(Stats *st, PyObject *args) {
     Py_ssize_t max_rows, group_min;
     if (!PyArg_ParseTuple(args, "nn", &max_rows, &group_min)) return NULL;
-    size_t n, first = 0;
-    Param **order = param_sorted(st, &n);
-    PyObject *pieces = order != NULL ? PyList_New(0) : NULL;
+    size_t n = st->params.count, first = 0;
+    Param **order = PyMem_Malloc((n ? n : 1) * sizeof *order); /* the parameters by (slave, address) */
+    for (size_t k = 0; order != NULL && k < n; k++) order[k] = &PARAMS(st)[k];
+    if (order != NULL) qsort(order, n, sizeof *order, param_order);
+    PyObject *pieces = order != NULL ? PyList_New(0) : PyErr_NoMemory();
     unsigned long long totals[PARAM_COUNTS] = {0}, expanded = 0;
     for (size_t k = 0; pieces != NULL && k < n; k++) {
         const Param *p = order[k];

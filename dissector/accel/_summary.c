@@ -155,6 +155,8 @@ static uint64_t mix(uint64_t key) { /* splitmix64's finaliser: keys differ in a 
     return key ^ (key >> 31);
 }
 
+static size_t key_hash(const void *key) { return (size_t)mix(*(const uint64_t *)key); } /* (a 64-bit key) */
+
 /* ---- Python objects made in C: dict[key] = value and list.append(item) of new references, which they release
  * (NULL: the error of making one, already set): 0, or -1 with an exception set. ---------------------------- */
 static int dict_put(PyObject *dict, PyObject *key, PyObject *value) {
@@ -292,11 +294,26 @@ typedef struct {
     int named;
 } PieceSlot;
 
+/* What the framer weighs besides the bytes (framing/rtu.py RtuFramer, rules.Awaiting): the answer awaited, the
+ * line's habit, and where records end: the engine's chunks (tl, while run_timed() runs), or noise_span's lists. */
+typedef struct {
+    const uint8_t *b;                  /* the bytes: run()'s buffer, or the framer's (noise_span) */
+    Py_ssize_t size;
+    int expect_slave, expect_function; /* the answer awaited, -1: none */
+    const uint8_t *echo;               /* what it must repeat of its request (_echo; the engine's: nothing) */
+    Py_ssize_t echo_length;
+    char glitchy;                      /* StreamFramer.glitchy: the line leaves 00 glitches (set at each hand-back) */
+    Timeline *tl;                      /* the engine's: record ends where tl->active; NULL: the lists below */
+    const Py_ssize_t *ends, *starts;   /* noise_span's record ends (_boundaries) and starts (_record_starts), */
+    Py_ssize_t end_count, start_count; /* ascending, as buffer indexes */
+    signed char *ends_record;          /* by record end: ends_record's answer, -1 not asked yet (the framer's
+                                        * _ends_memo: the buffer and the state stay in one noise_span call) */
+} Line;
+
 typedef struct {
     PyObject_HEAD
     unsigned long long count;
-    int expect_slave, expect_function; /* -1: no answer awaited */
-    char glitchy; /* the framer's StreamFramer.glitchy: the line leaves 00 glitches (set at each hand-back) */
+    Line line; /* the framer's state (its bytes: run()'s buffer) */
     PyObject *slave_info;
     PyObject *piece;
     PyObject *texts;     /* texts(slave, request, answer or None) -> Texts or None (hand over) */
@@ -473,9 +490,10 @@ static inline int crc_ok(const uint8_t *b, Py_ssize_t i, Py_ssize_t length) {
 }
 
 /* A length rule's answer as framing/rules.py gives it: a length (0: the layout cannot apply), more
- * bytes needed, or a CRC scan from a minimum length (its Scan). */
+ * bytes needed, or a CRC scan from a minimum length (its Scan; `declared`: the length its own fields
+ * declare, Scan.declared, -1 where they run past the bytes there, 0 none). */
 enum { LENGTH_OK, LENGTH_NEED, LENGTH_SCAN };
-typedef struct { int what; Py_ssize_t value; } Length;
+typedef struct { int what; Py_ssize_t value, declared; } Length;
 
 static Length rule_length(const LengthRule *rule, const uint8_t *b, Py_ssize_t i, Py_ssize_t n) {
     const Length need = {LENGTH_NEED, 0};
@@ -494,14 +512,15 @@ static Length rule_length(const LengthRule *rule, const uint8_t *b, Py_ssize_t i
     case RULE_MEI_OBJECTS: { /* `value` objects from `extra`: an id, a length byte, that many bytes each */
         /* Where the walk does not end in a valid CRC (past the bytes there or an RTU frame, or its CRC
          * fails): a CRC scan from the list's start (rules.py _mei_objects), the careful path's. */
-        const Length fallback = {LENGTH_SCAN, rule->extra + 2};
+        Length fallback = {LENGTH_SCAN, rule->extra + 2, -1};
         Py_ssize_t stop = rule->extra;
         for (Py_ssize_t k = value; k > 0; k--) {
             if (i + stop + 1 >= n) return fallback;
             stop += 2 + b[i + stop + 1];
-            if (stop > MAX_ADU) return fallback;
+            if (stop > MAX_ADU) return (Length){LENGTH_SCAN, rule->extra + 2, 0};
         }
-        return i + stop + 2 <= n && crc_ok(b, i, stop + 2) ? (Length){LENGTH_OK, stop + 2} : fallback;
+        fallback.declared = stop + 2;
+        return i + stop + 2 <= n && crc_ok(b, i, stop + 2) ? (Length){LENGTH_OK, stop + 2, 0} : fallback;
     }
     default: /* counted */
         return (Length){LENGTH_OK, rule->extra + value};
@@ -549,106 +568,157 @@ static int rule_check(const LengthRule *rule, const uint8_t *b, Py_ssize_t i, Py
     return i + *length > n ? 2 : crc_ok(b, i, *length);
 }
 
-static Py_ssize_t framed_reach(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n); /* (below) */
-
-/* RecordEnds._crosses_framed_record: a reading at i of `length` bytes (-1: more than there are) would swallow a
- * record that is a frame of its own, the first one after i (framed_reach) starting inside it: it is none. */
-static int crosses_framed_record(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t length, Py_ssize_t n) {
-    Py_ssize_t reach = framed_reach(e, b, i, n);
-    return reach < n && reach < (length < 0 ? n : i + length);
-}
-
-/* RtuFramer._valid_frame_at (not final, with scans): 1 an intact frame starts at j, 0 none, -1 more
- * bytes needed to know. The interpretations are the framer's, in its order for the expectation. */
-static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize_t n) {
-    if (n - j < MIN_ADU) return -1;
-    const LengthRule *rules[3]; /* (any address: 248..255 are framed too, reserved) */
-    int count = layouts(b[j + 1], b[j] == e->expect_slave && b[j + 1] == e->expect_function, rules);
-    int undecided = 0; /* a CRC scan found nothing yet, but a longer frame may still arrive */
-    Py_ssize_t length;
-    for (int r = 0; r < count; r++) {
-        int found = rule_check(rules[r], b, j, n, &length);
-        if (found < 0) {
-            Py_ssize_t reach = framed_reach(e, b, j, n); /* (not across a record that is a frame) */
-            CrcScan scan = crc_scan(b, j, length, reach - j < MAX_ADU ? reach - j : MAX_ADU); /* _shortest_crc */
-            if (crc_next(&scan)) return 1;
-            undecided = undecided || (reach == n && n - j < MAX_ADU);
-        } else if (found == 1 || (found == 2 && !crosses_framed_record(e, b, j, length, n))) {
-            return found == 1 ? 1 : -1; /* (bytes to come: not waited for across a record that is a frame) */
-        }
+/* The first index of the sorted `at` (count) not below j. */
+static Py_ssize_t lower_index(const Py_ssize_t *at, Py_ssize_t count, Py_ssize_t j) {
+    Py_ssize_t low = 0, high = count;
+    while (low < high) {
+        Py_ssize_t middle = (low + high) / 2;
+        if (at[middle] < j) low = middle + 1;
+        else high = middle;
     }
-    return undecided ? -1 : 0;
+    return low;
 }
 
-/* The first boundary (a record's end, a silence) after j, up to n; -1: none there. (framed_reach's steps) */
-static Py_ssize_t record_end(Timeline *t, Py_ssize_t j, Py_ssize_t n) {
-    for (Py_ssize_t k = chunk_of(t, t->base + j); k < t->count; k++) {
+/* StreamFramer._boundary_at: a record ends, or a silence begins, at j. */
+static inline int line_bound(const Line *L, Py_ssize_t j) {
+    if (L->tl != NULL) return L->tl->active && boundary_at(L->tl, L->tl->base + j);
+    Py_ssize_t k = lower_index(L->ends, L->end_count, j);
+    return k < L->end_count && L->ends[k] == j;
+}
+
+/* Offsets.first_after: the first record end o with low < o <= high, or -1. */
+static Py_ssize_t line_end_after(const Line *L, Py_ssize_t low, Py_ssize_t high) {
+    Timeline *t = L->tl;
+    if (t == NULL) {
+        Py_ssize_t k = lower_index(L->ends, L->end_count, low + 1);
+        return k < L->end_count && L->ends[k] <= high ? L->ends[k] : -1;
+    }
+    for (Py_ssize_t k = t->active ? chunk_of(t, t->base + low) : t->count; k < t->count; k++) {
         Py_ssize_t at = (Py_ssize_t)(chunk_end(t, k) - t->base);
-        if (at > n) break;
+        if (at > high) break;
         if (boundary_at(t, t->base + at)) return at;
     }
     return -1;
 }
 
-/* RecordEnds._ends_record: a layout at j (valid_frame_at's) checks out and ends where a record does, or a silence
- * begins (a code without a length rule: its CRC checks there). */
-static int ends_record(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize_t n) {
-    Timeline *t = (Timeline *)&e->tl; /* (its cursor only moves) */
+/* rules.Awaiting._awaited: the answer awaited starts at i (its echo compared as far as the bytes go). */
+static int awaited(const Line *L, Py_ssize_t i) {
+    int function = L->b[i + 1];
+    if (L->b[i] != L->expect_slave || (function & 0x7F) != L->expect_function) return 0;
+    if (!L->echo_length || function & 0x80) return 1;
+    Py_ssize_t got = L->size - (i + 2);
+    got = got < 0 ? 0 : got < L->echo_length ? got : L->echo_length;
+    return memcmp(L->b + i + 2, L->echo, (size_t)got) == 0;
+}
+
+/* RecordEnds._ends_record: a layout at j checks out and ends at a record's end (a scanned one: the first after j). */
+static int ends_record(const Line *L, Py_ssize_t j, Py_ssize_t n) {
     const LengthRule *rules[3];
-    int count = layouts(b[j + 1], 0, rules);
-    Py_ssize_t length;
+    int count = layouts(L->b[j + 1], awaited(L, j), rules);
     for (int r = 0; r < count; r++) {
-        int found = rule_check(rules[r], b, j, n, &length);
-        if (found < 0) { /* (a CRC scan from `length` bytes) */
-            Py_ssize_t end = record_end(t, j, n);
-            if (end - j >= length && end - j >= MIN_ADU && end - j <= MAX_ADU && crc_ok(b, j, end - j)) return 1;
-        } else if (found == 1 && boundary_at(t, t->base + j + length)) {
-            return 1;
+        Length found = rule_length(rules[r], L->b, j, n);
+        Py_ssize_t length = found.what == LENGTH_NEED ? -1 : found.value;
+        if (found.what == LENGTH_SCAN) {
+            Py_ssize_t end = line_end_after(L, j, n);
+            length = end >= 0 && end - j >= found.value ? end - j : 0;
         }
+        if (length >= MIN_ADU && length <= MAX_ADU && j + length <= n && line_bound(L, j + length) &&
+            crc_ok(L->b, j, length))
+            return 1;
     }
     return 0;
 }
 
-/* RecordEnds._framed_reach: where a CRC scan from i stops, the first record after i (a chunk's end that is a
- * boundary) that is a frame of its own, else n; n on an untimed stream (no records). */
-static Py_ssize_t framed_reach(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n) {
-    Timeline *t = (Timeline *)&e->tl;
-    for (Py_ssize_t at = i; t->active && (at = record_end(t, at, n)) > 0 && at < i + MAX_ADU && n - at >= MIN_ADU;)
-        if (ends_record(e, b, at, n)) return at;
+/* RecordEnds._framed_reach: where a CRC scan from i stops, the first record end after i that is a frame of its
+ * own (within MAX_ADU), else n (n too without record ends: an untimed stream). */
+static Py_ssize_t framed_reach(const Line *L, Py_ssize_t i, Py_ssize_t n) {
+    Py_ssize_t high = n - MIN_ADU + 1 < i + MAX_ADU ? n - MIN_ADU + 1 : i + MAX_ADU;
+    if (L->tl == NULL) { /* noise_span's record ends, each weighed once (the framer's _ends_memo) */
+        for (Py_ssize_t k = lower_index(L->ends, L->end_count, i + 1); k < L->end_count && L->ends[k] < high; k++) {
+            if (L->ends_record[k] < 0) L->ends_record[k] = (signed char)ends_record(L, L->ends[k], n);
+            if (L->ends_record[k]) return L->ends[k];
+        }
+        return n;
+    }
+    for (Py_ssize_t at = i; (at = line_end_after(L, at, n)) > 0 && at < high;)
+        if (ends_record(L, at, n)) return at;
     return n;
 }
 
-/* RtuFramer._followed (not final, no boundaries in this path): an intact frame at `end`, or after a few
- * glitch bytes. 1 yes, 0 no, -1 more bytes needed. */
-static int followed(const Engine *e, const uint8_t *b, Py_ssize_t end, Py_ssize_t n) {
-    Timeline *t = (Timeline *)&e->tl; /* (its cursor only moves) */
+/* RecordEnds._crosses_framed_record: a reading at i of `length` bytes (-1: more than there are) would swallow a
+ * record that is a frame of its own, the first one after i (framed_reach) starting inside it: it is none. */
+static int crosses_framed_record(const Line *L, Py_ssize_t i, Py_ssize_t length, Py_ssize_t n) {
+    Py_ssize_t reach = framed_reach(L, i, n);
+    return reach < n && reach < (length < 0 ? n : i + length);
+}
+
+/* RtuFramer._valid_frame_at with the bytes up to n: 1 an intact frame starts at j, 0 none, -1 more bytes needed
+ * to know (`final`: none will come); `scan` 0: layouts without a length rule not tried. The interpretations are
+ * the framer's, in its order for the answer awaited (any address: 248..255 are framed too, reserved). */
+static int valid_frame_at(const Line *L, Py_ssize_t j, Py_ssize_t n, int final, int scan) {
+    if (n - j < MIN_ADU) return final ? j == n : -1;
+    const LengthRule *rules[3];
+    int count = layouts(L->b[j + 1], awaited(L, j), rules);
+    int undecided = 0; /* a CRC scan found nothing yet, but a longer frame may still arrive */
+    for (int r = 0; r < count; r++) {
+        Length found = rule_length(rules[r], L->b, j, n);
+        if (found.what == LENGTH_SCAN) {
+            if (!scan) continue;
+            Py_ssize_t reach = framed_reach(L, j, n); /* (not across a record that is a frame: _shortest_crc) */
+            CrcScan crcs = crc_scan(L->b, j, found.value, reach - j < MAX_ADU ? reach - j : MAX_ADU);
+            if (crc_next(&crcs)) return 1;
+            undecided = undecided || (!final && reach == n && n - j < MAX_ADU);
+            continue;
+        }
+        if (found.what == LENGTH_NEED) { /* (bytes to come: not waited for across a record that is a frame) */
+            if (final || !crosses_framed_record(L, j, -1, n)) return final ? 0 : -1;
+            continue;
+        }
+        Py_ssize_t length = found.value;
+        if (length < MIN_ADU || length > MAX_ADU) continue;
+        if (j + length > n) {
+            if (final || crosses_framed_record(L, j, length, n)) continue;
+            return -1;
+        }
+        if (crc_ok(L->b, j, length)) return 1;
+    }
+    return undecided ? -1 : 0;
+}
+
+/* RtuFramer._followed, not final: a record's end (a silence) or an intact frame at `end`, or after a few glitch
+ * bytes. 1 yes, 0 no, -1 more bytes needed. */
+static int followed(const Line *L, Py_ssize_t end, Py_ssize_t n) {
     for (Py_ssize_t j = end;; j++) {
-        if (t->active && boundary_at(t, t->base + j)) return 1; /* run_timed(): a record's end, a silence */
-        int found = valid_frame_at(e, b, j, n);
+        if (line_bound(L, j)) return 1;
+        int found = valid_frame_at(L, j, n, 0, 1);
         if (found != 0) return found;
-        if (!(j < n && glitch_bytes[b[j]] && j - end < GLITCH_SKIP)) return 0;
+        if (!(j < n && glitch_bytes[L->b[j]] && j - end < GLITCH_SKIP)) return 0;
     }
 }
 
-/* RtuFramer._scan in step (no noise open): the shortest CRC match that an intact frame (or a record's
- * end, a silence) follows. Both of the framer's interpretations scan alike, so the first one's kind stands. */
-static Py_ssize_t scan_length(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t minimum) {
-    Timeline *t = (Timeline *)&e->tl; /* (its cursor only moves) */
-    Py_ssize_t reach = framed_reach(e, b, i, n); /* (no scan across a record that is a frame of its own) */
+static int framed_inside(const Line *L, Py_ssize_t i, Py_ssize_t length); /* (_noise.h) */
+
+/* RtuFramer._scan: the shortest CRC match from `minimum` bytes that an intact frame (or a record's end, a
+ * silence) follows, and with a noise run open (`noise`: noise_span's) no intact frame is inside; -1: bytes to
+ * come decide; 0: none (noise, the careful path's). Both of the framer's interpretations scan alike, so the first
+ * one's kind stands. */
+static Py_ssize_t scan_length(const Line *L, Py_ssize_t i, Py_ssize_t n, Py_ssize_t minimum, int noise) {
+    Py_ssize_t reach = framed_reach(L, i, n); /* (no scan across a record that is a frame of its own) */
     Py_ssize_t maximum = reach - i < MAX_ADU ? reach - i : MAX_ADU;
     /* First a frame right after it, then one after glitch bytes (a frame and a 00 check one byte longer);
      * on a line that leaves 00 glitches, only the second (the 00 after a frame is one). */
-    for (int glitches = e->glitchy ? 1 : 0; glitches < 2 && minimum <= maximum; glitches++) {
-        CrcScan scan = crc_scan(b, i, minimum, maximum);
-        for (Py_ssize_t length; (length = crc_next(&scan)) != 0;) {
-            int following = glitches ? followed(e, b, i + length, n)
-                            : t->active && boundary_at(t, t->base + i + length) ? 1 : valid_frame_at(e, b, i + length, n);
-            if (following < 0) return FRAME_NEED;
-            if (following) return length;
+    for (int glitches = L->glitchy ? 1 : 0; glitches < 2; glitches++) {
+        CrcScan crcs = crc_scan(L->b, i, minimum, maximum);
+        for (Py_ssize_t length; (length = crc_next(&crcs)) != 0;) {
+            int following = glitches ? followed(L, i + length, n)
+                            : line_bound(L, i + length) ? 1 : valid_frame_at(L, i + length, n, 0, 1);
+            int inside = following > 0 && noise ? framed_inside(L, i, length) : 0;
+            if (following < 0 || inside < 0) return -1;
+            if (following && !inside) return length;
         }
     }
-    /* nothing: noise, the careful path's; or bytes to come (none up to a record that is a frame) */
-    return reach == n && n - i < MAX_ADU ? FRAME_NEED : FRAME_HANDOVER;
+    /* nothing: noise; or bytes to come (none up to a record that is a frame) */
+    return reach == n && n - i < MAX_ADU ? -1 : 0;
 }
 
 /* Frame length by the first interpretation (framing/rules.py _REQUEST_FIRST_FAST / _RESPONSE_FIRST_FAST);
@@ -665,7 +735,8 @@ static Py_ssize_t first_length(const Engine *e, const uint8_t *b, Py_ssize_t i, 
         /* FC8's Return Query Data is found by the framer's own scan; FC43 other than 14 is the careful path's */
         if (!rules[handled_index(function)].special) return FRAME_HANDOVER;
         *scanned = 1;
-        return scan_length(e, b, i, n, length.value);
+        Py_ssize_t found = scan_length(&e->line, i, n, length.value, 0);
+        return found ? found : FRAME_HANDOVER;
     }
     /* 0: the rule cannot apply; longer than any RTU frame: the careful path's (its fast path takes none) */
     return length.value == 0 || length.value > MAX_ADU ? FRAME_HANDOVER : length.value;
@@ -679,17 +750,17 @@ static inline int frame_kind(const Engine *e, const uint8_t *b, Py_ssize_t i, Py
     int slave = b[i], function = b[i + 1];
     if (slave > MAX_SLAVE) return FRAME_HANDOVER;
     if (slave == 0) {
-        int after = e->tl.active ? 1 : valid_frame_at(e, b, i + 1, n);
+        int after = e->tl.active ? 1 : valid_frame_at(&e->line, i + 1, n, 0, 1);
         if (after < 0) return FRAME_NEED;
         if (after) return FRAME_HANDOVER;
     }
     if (function & 0x80) {
         /* An exception: taken on the fast path only as the answer awaited (framing/rtu.py _run). */
-        if (slave != e->expect_slave || (function & 0x7F) != e->expect_function) return FRAME_HANDOVER;
+        if (slave != e->line.expect_slave || (function & 0x7F) != e->line.expect_function) return FRAME_HANDOVER;
         return KIND_EXCEPTION;
     }
     if (handled_index(function) < 0) return FRAME_HANDOVER;
-    return (slave == e->expect_slave && function == e->expect_function) ? KIND_RESPONSE : KIND_REQUEST;
+    return (slave == e->line.expect_slave && function == e->line.expect_function) ? KIND_RESPONSE : KIND_REQUEST;
 }
 
 #include "_timedframe.h" /* the framer's decision on a chunked, timed stream */
@@ -819,8 +890,7 @@ static int write_memory(Engine *e) {
     return status;
 }
 
-static size_t piece_hash(const void *key) { return (size_t)mix(*(const uint64_t *)key); }
-static const DenseKind PIECE_KIND = {sizeof(PieceSlot), sizeof(uint64_t), 3072, piece_hash};
+static const DenseKind PIECE_KIND = {sizeof(PieceSlot), sizeof(uint64_t), 3072, key_hash};
 
 static void pieces_clear(Engine *e) {
     for (size_t k = 0; k < e->pieces.count; k++) Py_DECREF(((PieceSlot *)e->pieces.items)[k].text);
@@ -1186,7 +1256,7 @@ enum { STEP_DONE, STEP_NEED, STEP_HANDOVER, STEP_ERROR };
  * past its answer, or up to `a`, the next request, when it was not answered. */
 static int taken(Engine *e, Py_ssize_t *pos, const FrameRef *q, const FrameRef *a, int answered) {
     e->count += answered ? 2 : 1;
-    if (answered) e->expect_slave = e->expect_function = -1;
+    if (answered) e->line.expect_slave = e->line.expect_function = -1;
     *pos = answered ? a->at + a->length : a->at;
     e->tl.decided = answered ? a->decided : q->decided;
     return STEP_DONE;
@@ -1219,8 +1289,8 @@ static int echoes(const uint8_t *b, const FrameRef *q, const FrameRef *a) {
  * answer to nothing: pairing.py's note). A caller that
  * does not take the transaction takes the expectation back. */
 static int answer_to(Engine *e, const uint8_t *b, Py_ssize_t n, const FrameRef *q, FrameRef *a) {
-    e->expect_slave = q->slave;
-    e->expect_function = q->function;
+    e->line.expect_slave = q->slave;
+    e->line.expect_function = q->function;
     int found = next_frame(e, b, q->at + q->length, n, a, q->decided);
     if (found == FRAME_OK && a->kind != KIND_REQUEST &&
         ((q->timed && a->timed && (a->ns < q->ns || (e->tl.timeout >= 0 && stamp_seconds(a->ns, q->ns) > e->tl.timeout)))
@@ -1250,7 +1320,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
         int quiet = frame_is_quiet(e, s, b + q.at, q.length, NULL, &r, &reads);
         if (quiet <= 0) return quiet < 0 ? STEP_ERROR : STEP_HANDOVER;
     }
-    int saved_slave = e->expect_slave, saved_function = e->expect_function;
+    int saved_slave = e->line.expect_slave, saved_function = e->line.expect_function;
     size_t mark = e->out.len;
     found = answer_to(e, b, n, &q, &a);
     ClockRefs clock = e->tl.refs; /* the time column's references, taken back with the lines */
@@ -1280,8 +1350,8 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     /* Not shown here: its lines and its expectation are taken back. */
     e->out.len = mark;
     e->out.failed = 0;
-    e->expect_slave = saved_slave;
-    e->expect_function = saved_function;
+    e->line.expect_slave = saved_slave;
+    e->line.expect_function = saved_function;
     e->tl.refs = clock;
     return written < 0 ? STEP_ERROR : found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
 }
@@ -1326,6 +1396,8 @@ static PyObject *engine_run(Engine *e, PyObject *args) {
         }
         e->running = 1;
         e->run_number++;
+        e->line.b = view.buf;
+        e->line.size = view.len;
         e->out.len = 0;
         e->out.failed = 0;
         do {
@@ -1388,7 +1460,8 @@ static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
     if (e->read_word == NULL || e->written_word == NULL) return -1;
     for (int k = 0; k < 256; k++) slave_clear(&e->slaves[k]);
     e->count = 0;
-    e->expect_slave = e->expect_function = -1;
+    e->line.expect_slave = e->line.expect_function = -1;
+    e->line.tl = &e->tl;
     e->tl.timeout = -1;
     return 0;
 }
@@ -1444,11 +1517,11 @@ static PyMemberDef engine_members[] = {
      "with judge: run() returns a record per transaction passed instead of lines (_judge.h)"},
     {"decided", T_LONGLONG, offsetof(Engine, tl.decided), 0,
      "run_timed(): the Python framer's buffer end (stream offset) when it decided the last frame"},
-    {"glitchy", T_BOOL, offsetof(Engine, glitchy), 0,
+    {"glitchy", T_BOOL, offsetof(Engine, line.glitchy), 0,
      "the line leaves 00 glitches (the framer's glitchy): CRC scans take the shortest length"},
     /* Plain fields, in the shapes fastsummary.PathEngine gives its callers (expect, clock, set_timing). */
-    {"expect_slave", T_INT, offsetof(Engine, expect_slave), 0, "the slave whose answer is awaited, -1: none"},
-    {"expect_function", T_INT, offsetof(Engine, expect_function), 0, "the function code awaited"},
+    {"expect_slave", T_INT, offsetof(Engine, line.expect_slave), 0, "the slave whose answer is awaited, -1: none"},
+    {"expect_function", T_INT, offsetof(Engine, line.expect_function), 0, "the function code awaited"},
     {"char_time", T_DOUBLE, offsetof(Engine, tl.char_time), 0, "the line's character time, s (timing.LineTiming)"},
     {"t15", T_DOUBLE, offsetof(Engine, tl.t15), 0, "the line's t1.5, s: a longer silence inside a frame warns"},
     {"timeout", T_DOUBLE, offsetof(Engine, tl.timeout), 0, "the pairing timeout, s; < 0: none"},

@@ -21,7 +21,7 @@ static int other_layouts(const Engine *e, int function, int kind, const uint8_t 
         Py_ssize_t other;
         int found = rule_check(rules[w], b, i, m, &other);
         if (found < 0) return -1;
-        if (found == 2 && (other == -1 || other == length + 1) && !crosses_framed_record(e, b, i, other, m))
+        if (found == 2 && (other == -1 || other == length + 1) && !crosses_framed_record(&e->line, i, other, m))
             *waits = 1;
         if (found != 1) continue;
         valid++;
@@ -45,7 +45,7 @@ static int decide_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, in
          * length found, and the first stands where a record ends there, as the answer awaited, or where
          * what follows is known; the scan waits as _scan does (what follows a match not come yet). */
         if (length < 0) return (int)length;
-        if (!boundary_at(t, at + length) && kind != KIND_RESPONSE && valid_frame_at(e, b, i + length, m) < 0)
+        if (!boundary_at(t, at + length) && kind != KIND_RESPONSE && valid_frame_at(&e->line, i + length, m, 0, 1) < 0)
             return FRAME_NEED;
         return FRAME_OK;
     }
@@ -55,7 +55,7 @@ static int decide_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, in
     if (length == FRAME_NEED || i + length > m) {
         /* The first layout waits for its bytes: _match waits too, unless another one checks out, or they would
          * swallow a record that is a frame of its own (then _match weighs the others without it). */
-        if (crosses_framed_record(e, b, i, length, m)) return FRAME_HANDOVER;
+        if (crosses_framed_record(&e->line, i, length, m)) return FRAME_HANDOVER;
         if (kind == KIND_EXCEPTION) return FRAME_NEED;
         valid = other_layouts(e, function, kind, b, i, m, length, &shortest, &waits);
         return valid == 0 ? FRAME_NEED : FRAME_HANDOVER;
@@ -73,7 +73,7 @@ static int decide_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, in
         /* Nothing after it yet (a live read, a record, that ends with the frame; so the others are as
          * long): off a glitchy line, _match takes the answer awaited at once, and waits for what follows
          * anything else (_valid_frame_at there: NEED). */
-        if (i + length >= m && shortest >= length && !e->glitchy)
+        if (i + length >= m && shortest >= length && !e->line.glitchy)
             return kind == KIND_RESPONSE ? FRAME_OK : FRAME_NEED;
         return FRAME_HANDOVER;
     }
