@@ -156,3 +156,22 @@ def test_standard_input_same_report(name: str, tmp_path: Path, monkeypatch: pyte
     stdin = (CAPTURES / f"{name}.pcap").read_bytes()
     assert_same_report(["-", "--profile", "auto"], tmp_path, monkeypatch, stdin=stdin)
     assert fed.reports == 1
+
+
+def test_readable_again_drawn_by_the_engine_as_in_python(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                        fed: Fed) -> None:
+    """HSP read for 12 s, protected (16#8000 in a two-register read, VW3 A3 303 p.38) twice, then readable
+    again for 12 s: the page the engine feeds (the polls it counts, the story's frames the Python stages
+    hand it) equals the Python stages' one, with the trend's marks at the same times."""
+    request = rtu("0C 03 0C 20 00 02")  # HSP, LSP
+    readable, protected = rtu("0C 03 04 01 F4 00 00"), rtu("0C 03 04 80 00 00 00")
+    answers = [readable] * 40 + [protected] * 2 + [readable] * 40
+    records = []
+    for k, answer in enumerate(answers):
+        records += [(request, k * 300_000_000), (answer, k * 300_000_000 + 12_000_000)]
+    capture = tmp_path / "hsp_again.pcap"
+    write_pcap(capture, records)
+    data = assert_same_report([str(capture), "--profile", "atv71"], tmp_path, monkeypatch)
+    hsp = next(parameter for parameter in data["parameters"] if parameter["code"] == "HSP")
+    assert hsp["marks"] == [[12.012, "protected"], [12.612, "readable again (protected before)"]]
+    assert fed.reports == 1 and fed.python_items < len(records) // 10
