@@ -7730,10 +7730,11 @@ local function interpret_wide(row, first, second)
   if row.unit ~= nil then text = text .. " " .. row.unit end
   return value, text
 end
-M.PLC_LABELS, M.address_name, M.address_runs, M.build_device = PLC_LABELS, address_name, address_runs, build_device
-M.check_references, M.consecutive, M.copied, M.device_for = check_references, consecutive, copied, device_for
-M.device_of, M.has_note, M.interpret, M.interpret_wide = device_of, has_note, interpret, interpret_wide
-M.layered_rows, M.rows_before, M.rows_for, M.span_name = layered_rows, rows_before, rows_for, span_name
+M.INPUT_FUNCTIONS, M.PLC_LABELS, M.address_name = INPUT_FUNCTIONS, PLC_LABELS, address_name
+M.address_runs, M.build_device, M.check_references = address_runs, build_device, check_references
+M.consecutive, M.copied, M.device_for, M.device_of = consecutive, copied, device_for, device_of
+M.has_note, M.interpret, M.interpret_wide, M.layered_rows = has_note, interpret, interpret_wide, layered_rows
+M.rows_before, M.rows_for, M.span_name = rows_before, rows_for, span_name
 end
 
 -- ---- vw3.story: lua/src/story.lua ----
@@ -8255,10 +8256,10 @@ package.preload["vw3.selection"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.selection"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, NOISE, PROFILES, READS, RESPONSE, SELECTION = DATA, NOISE, PROFILES, READS, RESPONSE, SELECTION
-local build_device, concat, copied, device_for, format = build_device, concat, copied, device_for, format
-local ipairs, lane, layered_rows, made_once, math, next = ipairs, lane, layered_rows, made_once, math, next
-local note, pairs, register_at, say, span_name, table = note, pairs, register_at, say, span_name, table
+local INPUT_FUNCTIONS, NOISE, PROFILES, READS, RESPONSE = INPUT_FUNCTIONS, NOISE, PROFILES, READS, RESPONSE
+local SELECTION, build_device, concat, copied, device_for = SELECTION, build_device, concat, copied, device_for
+local format, ipairs, lane, layered_rows, made_once, math = format, ipairs, lane, layered_rows, made_once, math
+local next, note, pairs, register_at, say, span_name, table = next, note, pairs, register_at, say, span_name, table
 
 -- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
 -- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
@@ -8286,15 +8287,15 @@ local function settled(judged)
 end
 
 -- No device for the slave (none chosen, or the one chosen taken back) while its traffic may still choose
--- one (Selector.open): its frames are provisional. (Written out where every frame asks: lane.quiet, select_device.)
+-- one (Selector.open): its frames are provisional. (Written out where every frame asks: lane.quiet.)
 local function open(judged)
   local choice = judged.choice
   return (choice == nil or choice.profile == FALLBACK) and not settled(judged)
 end
 
 -- A candidate's map as traffic is judged against it: its own rows and the map layers given for it; FC4's
--- registers judged against a map's 3X rows where the device names them apart (layered_rows' inputs).
-local INPUT_FUNCTIONS = DATA.map_format.input_functions
+-- registers judged against a map's 3X rows where the device names them apart (layered_rows' inputs;
+-- INPUT_FUNCTIONS: lua/src/device.lua's).
 local function candidate_rows(name, fn)
   config.fit_rows = config.fit_rows or made_once(function(candidate)
     local rows, inputs = layered_rows(PROFILES[candidate], function(layer) return layer.profile == candidate end)
@@ -8510,9 +8511,7 @@ local function select_device(st, f, b)
     local judged = slave ~= 0 and st.judged[slave]
     -- (decoded again, the capture so far is read as a file: no frame provisional; a record read after
     -- that, in a capture that goes on, is read once again: lane.again's `going_on`)
-    local choice = judged and judged.choice -- (open(judged), written out)
-    if judged and (choice == nil or choice.profile == FALLBACK) and not settled(judged)
-        and (st.frozen == nil or st.going_on) then
+    if judged and open(judged) and (st.frozen == nil or st.going_on) then
       f.provisional = true
       st.provisional = true -- (lane.again: the later passes show no frame provisional)
       hold(st, f, b)
