@@ -7224,9 +7224,9 @@ local function read_map(text, origin)
   end
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
   local header, rows, order, delimiter, number = nil, {}, {}, ",", 0
-  local named = {} -- (code, ASCII case folded as --watch matches it -> { its table, its address })
-  local references = {} -- (table -> address -> the reference that named it first: maps.py reference_twice)
-  local lines = {} -- (table -> address -> its line: the rows, or a reference map's 3X rows)
+  local named = {} -- (code, ASCII case folded as --watch matches it -> the row that named it first)
+  -- (row -> where it was read: its line, reference, address and table, the rows or a reference map's 3X rows)
+  local placed = {}
   -- (lines end where str.splitlines ends them: \r\n, \r, \n, \v, \f, \x1c-\x1e, U+0085, U+2028, U+2029)
   text = text:gsub("\r\n", "\n"):gsub("[\r\v\f\28-\30]", "\n")
   text = text:gsub("\194\133", "\n"):gsub("\226\128[\168\169]", "\n")
@@ -7271,30 +7271,29 @@ local function read_map(text, origin)
         local address, row = map_row(values)
         local input = reference ~= nil and reference:sub(1, 1) == "3"
         local into = input and reference_rows[rows] or rows
-        lines[into], references[into] = lines[into] or {}, references[into] or {}
-        if into[address] ~= nil and reference ~= nil then
+        local before = placed[into[address]]
+        if before ~= nil and reference ~= nil then
           wrong("reference_twice", { text = reference, table = input and "input" or "holding", address = address,
-            first = references[into][address], line = lines[into][address] })
+            first = before.reference, line = before.line })
         end
-        if into[address] ~= nil then wrong("address_twice", { address = address, line = lines[into][address] }) end
-        references[into][address] = reference
-        local first = named[row.code:upper()]
+        if before ~= nil then wrong("address_twice", { address = address, line = before.line }) end
+        local first = placed[named[row.code:upper()]]
         if first ~= nil then
-          wrong("code_twice", { code = row.code, address = first[2], line = lines[first[1]][first[2]] })
+          wrong("code_twice", { code = row.code, address = first.address, line = first.line })
         end
-        named[row.code:upper()] = { into, address }
-        into[address], lines[into][address] = row, number
-        order[#order + 1] = { into, address }
+        named[row.code:upper()] = row
+        into[address], placed[row] = row, { line = number, reference = reference, address = address, into = into }
+        order[#order + 1] = row
       end
     end
   end
   -- (a 32-bit row's second register defined as a row of its own: told once the file is read, rows in order)
-  for _, key in ipairs(order) do
-    local into, first = key[1], key[2]
-    local row, second = into[first], first + 1
-    if row.words == 2 and into[second] ~= nil then
-      line_read = format("%s:%d: ", origin, lines[into][second])
-      wrong("second_register", { address = second, code = row.code, kind = row.kind, line = lines[into][first] })
+  for _, row in ipairs(order) do
+    local at = placed[row]
+    local second = at.address + 1
+    if row.words == 2 and at.into[second] ~= nil then
+      line_read = format("%s:%d: ", origin, placed[at.into[second]].line)
+      wrong("second_register", { address = second, code = row.code, kind = row.kind, line = at.line })
     end
   end
   line_read = origin .. ": "
