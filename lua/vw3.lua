@@ -7483,10 +7483,10 @@ local function reference_base(profile, fn) return (profile.plc_base or {})[fn] o
 local function reference_check(profile, slave)
   local low = math.min(reference_base(profile, 3), reference_base(profile, 4)) - 1
   local layers = {}
-  for index, layer in ipairs(config.layers) do
+  for _, layer in ipairs(config.layers) do
     if layer.high >= low and (layer.slave == nil or layer.slave == slave)
         and (layer.profile == nil or layer.profile == profile.name) then
-      layers[#layers + 1] = { layer = layer, index = index, own = {}, unnamed = {}, shifted = { {}, {} }, counts = {
+      layers[#layers + 1] = { layer = layer, own = {}, unnamed = {}, shifted = { {}, {} }, counts = {
         own = 0, unnamed = 0, 0, 0 } }
     end
   end
