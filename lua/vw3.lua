@@ -6270,8 +6270,8 @@ package.preload["vw3.decode"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, EXCEPTION, MAX_SLAVE, REQUEST, answered, concat = DATA, EXCEPTION, MAX_SLAVE, REQUEST, answered, concat
-local data_bytes, floor, format, ipairs, math, string = data_bytes, floor, format, ipairs, math, string
-local table, tostring = table, tostring
+local data_bytes, floor, format, ipairs, math, pairs = data_bytes, floor, format, ipairs, math, pairs
+local string, table, tostring = string, table, tostring
 local RULES = DATA.rules
 
 -- ---------------------------------------------------------------------------------------------------
@@ -6544,6 +6544,9 @@ local SPECIAL = {
 -- (GRAMMARS), its lifting rule (LIFT_OF; nil: none or a named special case) and its handler (H): the lifting
 -- rule's where the table has one, else the special case's.
 local GRAMMARS, LIFT_OF = DATA.grammars, DATA.lift_of
+-- The codes whose answer's window is its request's ([lift] start `request.start`: FC1..4, FC23, FC24).
+local WINDOW_ASKED = {}
+for code, rule in pairs(LIFT_OF.response) do WINDOW_ASKED[code] = rule.start == "request.start" end
 local H = DATA.lifters(SPECIAL, warn, say, echo_check, data_bytes, range_text, check_asked, check_data_echo,
   past_quantity)
 
@@ -6580,9 +6583,7 @@ local function decode_frame(f)
   local handler = H[f.kind][f.fn]
   if handler ~= nil then handler(f, b) end
   local request = f.request
-  -- (an answer whose window is its request's: its [lift] rule's start is `request.start`, FC1..4, 23, 24)
-  local rule = request ~= nil and LIFT_OF.response[f.fn]
-  if rule and rule.start == "request.start" and not verified(request) then
+  if request ~= nil and not verified(request) and WINDOW_ASKED[f.fn] then
     -- Its request failed its check (annotate_with kept none of its fields): no addresses
     -- (decode/fields.py lifter, pairing.py trusted_request).
     note(f, say("request_damaged", { check = f.ascii and "LRC" or "CRC" }))
