@@ -4926,26 +4926,23 @@ local function by_quantity(position, extra, unit, count_at, count_extra)
   end
 end
 
--- Length rules per function code (request, response, by quantity): generated from dissector/protocol/table.py.
-local RULES = {}
 local makers = {
   fixed = fixed, counted = counted,
   scan = scan, select = select, mei_objects = mei_objects, by_quantity = by_quantity,
 }
 function make_rule(spec) return makers[spec[1]](spec[2], spec[3], spec[4], spec[5], spec[6]) end
-for code, rules in pairs(DATA.protocol.rules) do
-  RULES[code] = { make_rule(rules[1]), make_rule(rules[2]), rules[3] and make_rule(rules[3]) }
-end
 
 -- Interpretations in the order they are tried (rules.py REQUEST_FIRST, RESPONSE_FIRST): request first,
 -- unless a response is expected; an exception's code (code + 128), the exception. No entry: no frame
--- starts with the code.
+-- starts with the code. Each code's length rules (request, response, by quantity): generated from
+-- dissector/protocol/table.py.
 local AS_REQUEST, AS_RESPONSE = {}, {}
 local AS_EXCEPTION = { { EXCEPTION, make_rule(DATA.protocol.exception_rule) } }
-for code, rules in pairs(RULES) do
-  local by_quantity = rules[3] and { REQUEST, rules[3] } -- (the quantity's length, tried last)
-  AS_REQUEST[code] = { { REQUEST, rules[1] }, { RESPONSE, rules[2] }, by_quantity }
-  AS_RESPONSE[code] = { { RESPONSE, rules[2] }, { REQUEST, rules[1] }, by_quantity }
+for code, rules in pairs(DATA.protocol.rules) do
+  local request, response = make_rule(rules[1]), make_rule(rules[2])
+  local by_quantity = rules[3] and { REQUEST, make_rule(rules[3]) } -- (the quantity's length, tried last)
+  AS_REQUEST[code] = { { REQUEST, request }, { RESPONSE, response }, by_quantity }
+  AS_RESPONSE[code] = { { RESPONSE, response }, { REQUEST, request }, by_quantity }
   AS_REQUEST[code + 128] = AS_EXCEPTION -- (no answer is awaited with an exception's code)
 end
 local NO_INTERPRETATION = {}
@@ -6424,8 +6421,6 @@ local MAX_ADU, MAX_SLAVE, MIN_ADU, drop_first, expect_after = MAX_ADU, MAX_SLAVE
 local fast_interpretation, first_above, flush_noise = fast_interpretation, first_above, flush_noise
 local interpretations, lane, rtu_frame, run_ascii, run_rtu = interpretations, lane, rtu_frame, run_ascii, run_rtu
 local silent_before, string, whole_crc_good = silent_before, string, whole_crc_good
-local feed
-local feed_whole
 
 local NO_BYTES = {} -- (the buffer once every byte is framed: never written to)
 
@@ -6476,7 +6471,7 @@ end
 -- capture): the frame run_rtu's fast path finds at 0, or nil (and the byte table when it was made) for
 -- feed to frame the record. The stream is left as feed and consume leave it: no byte waits, the
 -- record's time is the last one kept, no record end (its end is the stream's end), the frame counted.
-feed_whole = function(s, bytes, time)
+local function feed_whole(s, bytes, time)
   local n = #bytes
   local byte = string.byte
   local slave, code = byte(bytes, 1, 2)
@@ -6495,7 +6490,7 @@ end
 -- Feed one record's bytes (a Lua string; boundary: its end is a frame boundary) and frame what can be
 -- framed; final: nothing more will come. Returns the items in stream order. built: the record's byte
 -- table when feed_whole made it.
-feed = function(s, bytes, time, boundary, final, built)
+local function feed(s, bytes, time, boundary, final, built)
   local n = #bytes
   if s.silences == nil then s.silences = {} end -- (vw3.annotator new_state makes the rest of the stream)
   if n > 0 then
@@ -6917,8 +6912,7 @@ local function listening_since(st, slave)
   if listening == nil or slave == 0 then return nil end
   local since = listening[slave]
   if since == nil then since = st.listening_all end
-  if since == false then return nil end
-  return since
+  return since or nil -- (false: left the mode)
 end
 
 -- The slave leaves the mode (a broadcast 08/04 keeps the others in it).
@@ -7260,11 +7254,7 @@ end
 -- MAX_MAP_BYTES, SCALE_MIN, SCALE_MAX, SCALE_UNKNOWN, DEFAULT_TYPES, SIGNED_TYPES, PAIRS, SEPARATORS),
 -- written into the generated data.
 local FORMAT = DATA.map_format
-local MAX_MAP_BYTES, MESSAGES, TYPES, ORDERS, ACCESS = FORMAT.max_bytes, FORMAT.messages, FORMAT.types,
-  FORMAT.orders, FORMAT.access
-local PAIRS, SEPARATORS = FORMAT.pairs, FORMAT.separators
-local SCALE_MIN, SCALE_MAX = FORMAT.scale_min, FORMAT.scale_max -- (results stay finite numbers)
-local KNOWN_COLUMN = FORMAT.columns -- (a set)
+local MAX_MAP_BYTES, MESSAGES = FORMAT.max_bytes, FORMAT.messages
 
 local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end
 
@@ -7369,11 +7359,11 @@ end
 
 -- maps.reference_address: the address a PLC reference stands for (40001 -> 0, 30101 -> 100, 400001 -> 0),
 -- decimal digits only; FORMAT.reference_bases: 4X, 3X (five digits, or six: base * 10 - 9).
-local REFERENCE, REFERENCE_BASES = FORMAT.reference, FORMAT.reference_bases
+local REFERENCE = FORMAT.reference
 local function map_reference(text)
   text = strip(text)
   local number = text:match("^%d+$") and tonumber(text)
-  for _, base in ipairs(number and REFERENCE_BASES or {}) do
+  for _, base in ipairs(number and FORMAT.reference_bases or {}) do
     if number >= base and number <= base + 9998 then return number - base end
     local six = base * 10 - 9
     if number >= six and number <= six + 0xFFFF then return number - six end
@@ -7386,7 +7376,7 @@ end
 local reference_rows = setmetatable({}, { __mode = "k" })
 
 local function map_pairs(text, what)
-  local out, low, high = {}, PAIRS[what][1], PAIRS[what][2]
+  local out, low, high = {}, FORMAT.pairs[what][1], FORMAT.pairs[what][2]
   for part in (text .. ";"):gmatch("([^;]*);") do
     part = strip(part)
     if part ~= "" then
@@ -7438,24 +7428,24 @@ local function map_row(values)
     row.scale = row.decimals and tonumber(scale_text) or wrong("scale", { text = scale_text })
     local size = math.abs(row.scale)
     if size == 0 then wrong("scale_zero", { text = scale_text }) end
-    if not (size >= SCALE_MIN and size <= SCALE_MAX) then -- also 1e999 (inf)
+    if not (size >= FORMAT.scale_min and size <= FORMAT.scale_max) then -- also 1e999 (inf): finite results
       wrong("scale_range", { text = scale_text })
     end
   end
   -- (a read-only parameter's write is warned, its refusal named: dissector/devices/access.py)
-  row.read_only = choice(values, "access", string.upper, "", ACCESS) == "R" or nil
+  row.read_only = choice(values, "access", string.upper, "", FORMAT.access) == "R" or nil
   row.enum = map_pairs(values.enum or "", "enum")
   row.bits = map_pairs(values.bits or "", "bits")
   local signed = choice(values, "signed", tostring, "", SIGNED)
-  local kind = choice(values, "type", string.lower, FORMAT.default_types[signed == "1" and 2 or 1], TYPES)
-  local words = TYPES[kind]
+  local kind = choice(values, "type", string.lower, FORMAT.default_types[signed == "1" and 2 or 1], FORMAT.types)
+  local words = FORMAT.types[kind]
   -- (the signed cell a type agrees with, when both are given: a float32 takes none)
   local agrees = kind ~= "float32" and (FORMAT.signed_types[kind] and "1" or "0") or ""
   if strip(values.type or "") ~= "" and signed ~= "" and signed ~= agrees then
     wrong("signed_type", { text = signed, kind = kind })
   end
   row.signed = (signed == "1" or FORMAT.signed_types[kind]) or nil
-  local order = choice(values, "order", string.upper, FORMAT.order_list[1], ORDERS)
+  local order = choice(values, "order", string.upper, FORMAT.order_list[1], FORMAT.orders)
   if words == 1 and order ~= FORMAT.order_list[1] then
     wrong("order_one_word", { text = order, kind = kind })
   end
@@ -7485,8 +7475,8 @@ end
 
 -- The separator of a map from its header line: the one of SEPARATORS that splits it most (maps.py).
 local function sniff(header)
-  local best, most = SEPARATORS[1], 0
-  for _, separator in ipairs(SEPARATORS) do
+  local best, most = FORMAT.separators[1], 0
+  for _, separator in ipairs(FORMAT.separators) do
     local count = select(2, header:gsub(separator, ""))
     if count > most then best, most = separator, count end
   end
@@ -7506,9 +7496,9 @@ local function read_map(text, origin)
   end
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
   local header, rows, order, delimiter, number = nil, {}, {}, ",", 0
-  local named = {} -- (code, ASCII case folded as --watch matches it -> { its table, its address })
-  local references = {} -- (table -> address -> the reference that named it first: maps.py reference_twice)
-  local lines = {} -- (table -> address -> its line: the rows, or a reference map's 3X rows)
+  local named = {} -- (code, ASCII case folded as --watch matches it -> the row that named it first)
+  -- (row -> where it was read: its line, reference, address and table, the rows or a reference map's 3X rows)
+  local placed = {}
   -- (lines end where str.splitlines ends them: \r\n, \r, \n, \v, \f, \x1c-\x1e, U+0085, U+2028, U+2029)
   text = text:gsub("\r\n", "\n"):gsub("[\r\v\f\28-\30]", "\n")
   text = text:gsub("\194\133", "\n"):gsub("\226\128[\168\169]", "\n")
@@ -7525,7 +7515,7 @@ local function read_map(text, origin)
         local named, twice = {}, false -- (the columns named, and whether one is named twice: told last)
         for index, cell in ipairs(cells) do
           local name = strip(cell):lower()
-          if not KNOWN_COLUMN[name] and name ~= REFERENCE then wrong("unknown_column", { name = name }) end
+          if not FORMAT.columns[name] and name ~= REFERENCE then wrong("unknown_column", { name = name }) end
           header[index], named[name], twice = name, true, twice or named[name] ~= nil
         end
         if named[REFERENCE] then
@@ -7553,30 +7543,29 @@ local function read_map(text, origin)
         local address, row = map_row(values)
         local input = reference ~= nil and reference:sub(1, 1) == "3"
         local into = input and reference_rows[rows] or rows
-        lines[into], references[into] = lines[into] or {}, references[into] or {}
-        if into[address] ~= nil and reference ~= nil then
+        local before = placed[into[address]]
+        if before ~= nil and reference ~= nil then
           wrong("reference_twice", { text = reference, table = input and "input" or "holding", address = address,
-            first = references[into][address], line = lines[into][address] })
+            first = before.reference, line = before.line })
         end
-        if into[address] ~= nil then wrong("address_twice", { address = address, line = lines[into][address] }) end
-        references[into][address] = reference
-        local first = named[row.code:upper()]
+        if before ~= nil then wrong("address_twice", { address = address, line = before.line }) end
+        local first = placed[named[row.code:upper()]]
         if first ~= nil then
-          wrong("code_twice", { code = row.code, address = first[2], line = lines[first[1]][first[2]] })
+          wrong("code_twice", { code = row.code, address = first.address, line = first.line })
         end
-        named[row.code:upper()] = { into, address }
-        into[address], lines[into][address] = row, number
-        order[#order + 1] = { into, address }
+        named[row.code:upper()] = row
+        into[address], placed[row] = row, { line = number, reference = reference, address = address, into = into }
+        order[#order + 1] = row
       end
     end
   end
   -- (a 32-bit row's second register defined as a row of its own: told once the file is read, rows in order)
-  for _, key in ipairs(order) do
-    local into, first = key[1], key[2]
-    local row, second = into[first], first + 1
-    if row.words == 2 and into[second] ~= nil then
-      line_read = format("%s:%d: ", origin, lines[into][second])
-      wrong("second_register", { address = second, code = row.code, kind = row.kind, line = lines[into][first] })
+  for _, row in ipairs(order) do
+    local at = placed[row]
+    local second = at.address + 1
+    if row.words == 2 and at.into[second] ~= nil then
+      line_read = format("%s:%d: ", origin, placed[at.into[second]].line)
+      wrong("second_register", { address = second, code = row.code, kind = row.kind, line = at.line })
     end
   end
   line_read = origin .. ": "
@@ -7766,10 +7755,10 @@ local function reference_base(profile, fn) return (profile.plc_base or {})[fn] o
 local function reference_check(profile, slave)
   local low = math.min(reference_base(profile, 3), reference_base(profile, 4)) - 1
   local layers = {}
-  for index, layer in ipairs(config.layers) do
+  for _, layer in ipairs(config.layers) do
     if layer.high >= low and (layer.slave == nil or layer.slave == slave)
         and (layer.profile == nil or layer.profile == profile.name) then
-      layers[#layers + 1] = { layer = layer, index = index, own = {}, unnamed = {}, shifted = { {}, {} }, counts = {
+      layers[#layers + 1] = { layer = layer, own = {}, unnamed = {}, shifted = { {}, {} }, counts = {
         own = 0, unnamed = 0, 0, 0 } }
     end
   end
@@ -7786,14 +7775,12 @@ end
 -- maps_refs.names: a map names this register, a row of its own or a 32-bit row's second word.
 local function map_names(rows, address) return rows[address] ~= nil or rows_before(rows, address) ~= false end
 
--- maps_refs.offsets_text: `40001`, `40001 or 30001`.
+-- maps_refs.offsets_text: `40001`, `40001 or 30001` (integers: the profiles' bases less 0 or 1).
 local function offsets_text(offsets)
   local list = {}
   for offset in pairs(offsets) do list[#list + 1] = offset end
   table.sort(list, function(a, b) return a > b end)
-  local texts = {}
-  for index, offset in ipairs(list) do texts[index] = format("%d", offset) end
-  return concat(texts, " or ")
+  return concat(list, " or ")
 end
 
 -- maps_refs.reference_note: the variant (the base itself, 1; one less, 2) naming most registers no map
@@ -7844,10 +7831,9 @@ local function check_references(f, device)
           end
         end
       end
-      local note = reference_note(judged, f.slave)
-      if note ~= nil then
-        local notes = f.notes
-        if notes == nil then f.notes = { note } else notes[#notes + 1] = note end
+      local said = reference_note(judged, f.slave)
+      if said ~= nil then
+        note(f, said)
         judged.done, refs.left = true, refs.left - 1
         if refs.left == 0 then device.refs_open = false end
       end
@@ -7921,11 +7907,11 @@ end
 
 local FIXED = made_once(function(decimals) return "%." .. decimals .. "f" end)
 
--- A value times its row's scale, rounded to the decimals the scale was written with, and its text (unit
--- and all).
+-- A value times its row's scale (none: 1), rounded to the decimals the scale was written with, and its text
+-- (unit and all).
 local function scaled_value(row, value)
   local decimals = row.decimals or 0
-  local text = format(FIXED[decimals], value * row.scale)
+  local text = format(FIXED[decimals], value * (row.scale or 1))
   local scaled = tonumber(text)
   if decimals == 0 then scaled = floor(scaled + 0.5) end
   if row.unit ~= nil then text = text .. " " .. row.unit end
@@ -7955,12 +7941,8 @@ local function interpret(row, value)
     -- counts in unscaled
     return row.signed and raw_value or nil, say("unscaled", { value = raw_value, unit = row.unit })
   end
-  if row.scale == nil then
-    -- shown as is: a number in its unit (as a 32-bit row's), or the word itself
-    if row.unit ~= nil then return raw_value, format("%d %s", raw_value, row.unit) end
-    if row.signed then return raw_value, format("%d", raw_value) end
-    return nil, nil
-  end
+  -- (no scale, no unit, unsigned: the word itself; else a number, in its unit where it has one)
+  if row.scale == nil and row.unit == nil and not row.signed then return nil, nil end
   return scaled_value(row, raw_value)
 end
 
@@ -8011,15 +7993,15 @@ local function interpret_wide(row, first, second)
     value = high * 65536 + low
     if row.kind == "int32" and high >= 0x8000 then value = value - 4294967296 end
   end
-  if text == nil and row.scale ~= nil then return scaled_value(row, value) end
-  text = text or format("%d", value)
+  if text == nil then return scaled_value(row, value) end
   if row.unit ~= nil then text = text .. " " .. row.unit end
   return value, text
 end
-M.PLC_LABELS, M.address_name, M.address_runs, M.build_device = PLC_LABELS, address_name, address_runs, build_device
-M.check_references, M.consecutive, M.copied, M.device_for = check_references, consecutive, copied, device_for
-M.device_of, M.has_note, M.interpret, M.interpret_wide = device_of, has_note, interpret, interpret_wide
-M.layered_rows, M.rows_before, M.rows_for, M.span_name = layered_rows, rows_before, rows_for, span_name
+M.INPUT_FUNCTIONS, M.PLC_LABELS, M.address_name = INPUT_FUNCTIONS, PLC_LABELS, address_name
+M.address_runs, M.build_device, M.check_references = address_runs, build_device, check_references
+M.consecutive, M.copied, M.device_for, M.device_of = consecutive, copied, device_for, device_of
+M.has_note, M.interpret, M.interpret_wide, M.layered_rows = has_note, interpret, interpret_wide, layered_rows
+M.rows_before, M.rows_for, M.span_name = rows_before, rows_for, span_name
 end
 
 -- ---- vw3.story: lua/src/story.lua ----
@@ -8183,11 +8165,12 @@ end
 
 -- Every value at 16#8000 where the device answers an exception when every parameter is unreadable (p.38;
 -- annotator._all_marked): one at least is the value itself, so each is ambiguous and none is followed.
-local function all_marked(f, device, count, value_at, protected)
+-- (the run's count values from b[first] on)
+local function all_marked(f, device, count, b, first, protected)
   local code = device.profile.all_protected_exception
   if code == nil then return false end
-  for index = 0, count - 1 do
-    if value_at(index) ~= protected then return false end
+  for k = first, first + 2 * count - 2, 2 do
+    if b[k] * 256 + b[k + 1] ~= protected then return false end
   end
   note(f, say("all_marked", { protected = protected, device = device.profile.device, code = code }))
   return true
@@ -8241,9 +8224,8 @@ local function annotate_registers(f, device, run, b, read)
   local protected = read and device.profile.protected_value or nil
   local count, first = run.count, run.first
   local multi = count > 1
-  if multi and protected ~= nil and b[first] * 256 + b[first + 1] == protected -- (the usual answer: no closure)
-      and all_marked(f, device, count, function(index) return b[first + 2 * index] * 256 + b[first + 2 * index + 1] end,
-        protected) then
+  if multi and protected ~= nil and b[first] * 256 + b[first + 1] == protected -- (the usual answer: no call)
+      and all_marked(f, device, count, b, first, protected) then
     protected = nil
     run.status = {}
     for index = 0, count - 1 do run.status[index] = "ambiguous" end
@@ -8541,10 +8523,10 @@ package.preload["vw3.selection"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.selection"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, NOISE, PROFILES, READS, RESPONSE, SELECTION = DATA, NOISE, PROFILES, READS, RESPONSE, SELECTION
-local build_device, concat, copied, device_for, format = build_device, concat, copied, device_for, format
-local ipairs, lane, layered_rows, made_once, math, next = ipairs, lane, layered_rows, made_once, math, next
-local note, pairs, register_at, say, span_name, table = note, pairs, register_at, say, span_name, table
+local INPUT_FUNCTIONS, NOISE, PROFILES, READS, RESPONSE = INPUT_FUNCTIONS, NOISE, PROFILES, READS, RESPONSE
+local SELECTION, build_device, concat, copied, device_for = SELECTION, build_device, concat, copied, device_for
+local format, ipairs, lane, layered_rows, made_once, math = format, ipairs, lane, layered_rows, made_once, math
+local next, note, pairs, register_at, say, span_name, table = next, note, pairs, register_at, say, span_name, table
 
 -- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
 -- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
@@ -8572,15 +8554,15 @@ local function settled(judged)
 end
 
 -- No device for the slave (none chosen, or the one chosen taken back) while its traffic may still choose
--- one (Selector.open): its frames are provisional. (Written out where every frame asks: lane.quiet, select_device.)
+-- one (Selector.open): its frames are provisional. (Written out where every frame asks: lane.quiet.)
 local function open(judged)
   local choice = judged.choice
   return (choice == nil or choice.profile == FALLBACK) and not settled(judged)
 end
 
 -- A candidate's map as traffic is judged against it: its own rows and the map layers given for it; FC4's
--- registers judged against a map's 3X rows where the device names them apart (layered_rows' inputs).
-local INPUT_FUNCTIONS = DATA.map_format.input_functions
+-- registers judged against a map's 3X rows where the device names them apart (layered_rows' inputs;
+-- INPUT_FUNCTIONS: lua/src/device.lua's).
 local function candidate_rows(name, fn)
   config.fit_rows = config.fit_rows or made_once(function(candidate)
     local rows, inputs = layered_rows(PROFILES[candidate], function(layer) return layer.profile == candidate end)
@@ -8796,9 +8778,7 @@ local function select_device(st, f, b)
     local judged = slave ~= 0 and st.judged[slave]
     -- (decoded again, the capture so far is read as a file: no frame provisional; a record read after
     -- that, in a capture that goes on, is read once again: lane.again's `going_on`)
-    local choice = judged and judged.choice -- (open(judged), written out)
-    if judged and (choice == nil or choice.profile == FALLBACK) and not settled(judged)
-        and (st.frozen == nil or st.going_on) then
+    if judged and open(judged) and (st.frozen == nil or st.going_on) then
       f.provisional = true
       st.provisional = true -- (lane.again: the later passes show no frame provisional)
       hold(st, f, b)

@@ -104,10 +104,10 @@ local function reference_base(profile, fn) return (profile.plc_base or {})[fn] o
 local function reference_check(profile, slave)
   local low = math.min(reference_base(profile, 3), reference_base(profile, 4)) - 1
   local layers = {}
-  for index, layer in ipairs(config.layers) do
+  for _, layer in ipairs(config.layers) do
     if layer.high >= low and (layer.slave == nil or layer.slave == slave)
         and (layer.profile == nil or layer.profile == profile.name) then
-      layers[#layers + 1] = { layer = layer, index = index, own = {}, unnamed = {}, shifted = { {}, {} }, counts = {
+      layers[#layers + 1] = { layer = layer, own = {}, unnamed = {}, shifted = { {}, {} }, counts = {
         own = 0, unnamed = 0, 0, 0 } }
     end
   end
@@ -124,14 +124,12 @@ end
 -- maps_refs.names: a map names this register, a row of its own or a 32-bit row's second word.
 local function map_names(rows, address) return rows[address] ~= nil or rows_before(rows, address) ~= false end
 
--- maps_refs.offsets_text: `40001`, `40001 or 30001`.
+-- maps_refs.offsets_text: `40001`, `40001 or 30001` (integers: the profiles' bases less 0 or 1).
 local function offsets_text(offsets)
   local list = {}
   for offset in pairs(offsets) do list[#list + 1] = offset end
   table.sort(list, function(a, b) return a > b end)
-  local texts = {}
-  for index, offset in ipairs(list) do texts[index] = format("%d", offset) end
-  return concat(texts, " or ")
+  return concat(list, " or ")
 end
 
 -- maps_refs.reference_note: the variant (the base itself, 1; one less, 2) naming most registers no map
@@ -182,10 +180,9 @@ local function check_references(f, device)
           end
         end
       end
-      local note = reference_note(judged, f.slave)
-      if note ~= nil then
-        local notes = f.notes
-        if notes == nil then f.notes = { note } else notes[#notes + 1] = note end
+      local said = reference_note(judged, f.slave)
+      if said ~= nil then
+        note(f, said)
         judged.done, refs.left = true, refs.left - 1
         if refs.left == 0 then device.refs_open = false end
       end
@@ -259,11 +256,11 @@ end
 
 local FIXED = made_once(function(decimals) return "%." .. decimals .. "f" end)
 
--- A value times its row's scale, rounded to the decimals the scale was written with, and its text (unit
--- and all).
+-- A value times its row's scale (none: 1), rounded to the decimals the scale was written with, and its text
+-- (unit and all).
 local function scaled_value(row, value)
   local decimals = row.decimals or 0
-  local text = format(FIXED[decimals], value * row.scale)
+  local text = format(FIXED[decimals], value * (row.scale or 1))
   local scaled = tonumber(text)
   if decimals == 0 then scaled = floor(scaled + 0.5) end
   if row.unit ~= nil then text = text .. " " .. row.unit end
@@ -293,12 +290,8 @@ local function interpret(row, value)
     -- counts in unscaled
     return row.signed and raw_value or nil, say("unscaled", { value = raw_value, unit = row.unit })
   end
-  if row.scale == nil then
-    -- shown as is: a number in its unit (as a 32-bit row's), or the word itself
-    if row.unit ~= nil then return raw_value, format("%d %s", raw_value, row.unit) end
-    if row.signed then return raw_value, format("%d", raw_value) end
-    return nil, nil
-  end
+  -- (no scale, no unit, unsigned: the word itself; else a number, in its unit where it has one)
+  if row.scale == nil and row.unit == nil and not row.signed then return nil, nil end
   return scaled_value(row, raw_value)
 end
 
@@ -349,8 +342,7 @@ local function interpret_wide(row, first, second)
     value = high * 65536 + low
     if row.kind == "int32" and high >= 0x8000 then value = value - 4294967296 end
   end
-  if text == nil and row.scale ~= nil then return scaled_value(row, value) end
-  text = text or format("%d", value)
+  if text == nil then return scaled_value(row, value) end
   if row.unit ~= nil then text = text .. " " .. row.unit end
   return value, text
 end

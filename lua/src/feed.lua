@@ -3,8 +3,6 @@
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.feed"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local feed
-local feed_whole
 
 local NO_BYTES = {} -- (the buffer once every byte is framed: never written to)
 
@@ -55,7 +53,7 @@ end
 -- capture): the frame run_rtu's fast path finds at 0, or nil (and the byte table when it was made) for
 -- feed to frame the record. The stream is left as feed and consume leave it: no byte waits, the
 -- record's time is the last one kept, no record end (its end is the stream's end), the frame counted.
-feed_whole = function(s, bytes, time)
+local function feed_whole(s, bytes, time)
   local n = #bytes
   local byte = string.byte
   local slave, code = byte(bytes, 1, 2)
@@ -74,7 +72,7 @@ end
 -- Feed one record's bytes (a Lua string; boundary: its end is a frame boundary) and frame what can be
 -- framed; final: nothing more will come. Returns the items in stream order. built: the record's byte
 -- table when feed_whole made it.
-feed = function(s, bytes, time, boundary, final, built)
+local function feed(s, bytes, time, boundary, final, built)
   local n = #bytes
   if s.silences == nil then s.silences = {} end -- (vw3.annotator new_state makes the rest of the stream)
   if n > 0 then

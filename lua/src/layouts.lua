@@ -84,26 +84,23 @@ local function by_quantity(position, extra, unit, count_at, count_extra)
   end
 end
 
--- Length rules per function code (request, response, by quantity): generated from dissector/protocol/table.py.
-local RULES = {}
 local makers = {
   fixed = fixed, counted = counted,
   scan = scan, select = select, mei_objects = mei_objects, by_quantity = by_quantity,
 }
 function make_rule(spec) return makers[spec[1]](spec[2], spec[3], spec[4], spec[5], spec[6]) end
-for code, rules in pairs(DATA.protocol.rules) do
-  RULES[code] = { make_rule(rules[1]), make_rule(rules[2]), rules[3] and make_rule(rules[3]) }
-end
 
 -- Interpretations in the order they are tried (rules.py REQUEST_FIRST, RESPONSE_FIRST): request first,
 -- unless a response is expected; an exception's code (code + 128), the exception. No entry: no frame
--- starts with the code.
+-- starts with the code. Each code's length rules (request, response, by quantity): generated from
+-- dissector/protocol/table.py.
 local AS_REQUEST, AS_RESPONSE = {}, {}
 local AS_EXCEPTION = { { EXCEPTION, make_rule(DATA.protocol.exception_rule) } }
-for code, rules in pairs(RULES) do
-  local by_quantity = rules[3] and { REQUEST, rules[3] } -- (the quantity's length, tried last)
-  AS_REQUEST[code] = { { REQUEST, rules[1] }, { RESPONSE, rules[2] }, by_quantity }
-  AS_RESPONSE[code] = { { RESPONSE, rules[2] }, { REQUEST, rules[1] }, by_quantity }
+for code, rules in pairs(DATA.protocol.rules) do
+  local request, response = make_rule(rules[1]), make_rule(rules[2])
+  local by_quantity = rules[3] and { REQUEST, make_rule(rules[3]) } -- (the quantity's length, tried last)
+  AS_REQUEST[code] = { { REQUEST, request }, { RESPONSE, response }, by_quantity }
+  AS_RESPONSE[code] = { { RESPONSE, response }, { REQUEST, request }, by_quantity }
   AS_REQUEST[code + 128] = AS_EXCEPTION -- (no answer is awaited with an exception's code)
 end
 local NO_INTERPRETATION = {}

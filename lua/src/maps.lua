@@ -59,11 +59,7 @@ end
 -- MAX_MAP_BYTES, SCALE_MIN, SCALE_MAX, SCALE_UNKNOWN, DEFAULT_TYPES, SIGNED_TYPES, PAIRS, SEPARATORS),
 -- written into the generated data.
 local FORMAT = DATA.map_format
-local MAX_MAP_BYTES, MESSAGES, TYPES, ORDERS, ACCESS = FORMAT.max_bytes, FORMAT.messages, FORMAT.types,
-  FORMAT.orders, FORMAT.access
-local PAIRS, SEPARATORS = FORMAT.pairs, FORMAT.separators
-local SCALE_MIN, SCALE_MAX = FORMAT.scale_min, FORMAT.scale_max -- (results stay finite numbers)
-local KNOWN_COLUMN = FORMAT.columns -- (a set)
+local MAX_MAP_BYTES, MESSAGES = FORMAT.max_bytes, FORMAT.messages
 
 local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end
 
@@ -168,11 +164,11 @@ end
 
 -- maps.reference_address: the address a PLC reference stands for (40001 -> 0, 30101 -> 100, 400001 -> 0),
 -- decimal digits only; FORMAT.reference_bases: 4X, 3X (five digits, or six: base * 10 - 9).
-local REFERENCE, REFERENCE_BASES = FORMAT.reference, FORMAT.reference_bases
+local REFERENCE = FORMAT.reference
 local function map_reference(text)
   text = strip(text)
   local number = text:match("^%d+$") and tonumber(text)
-  for _, base in ipairs(number and REFERENCE_BASES or {}) do
+  for _, base in ipairs(number and FORMAT.reference_bases or {}) do
     if number >= base and number <= base + 9998 then return number - base end
     local six = base * 10 - 9
     if number >= six and number <= six + 0xFFFF then return number - six end
@@ -185,7 +181,7 @@ end
 local reference_rows = setmetatable({}, { __mode = "k" })
 
 local function map_pairs(text, what)
-  local out, low, high = {}, PAIRS[what][1], PAIRS[what][2]
+  local out, low, high = {}, FORMAT.pairs[what][1], FORMAT.pairs[what][2]
   for part in (text .. ";"):gmatch("([^;]*);") do
     part = strip(part)
     if part ~= "" then
@@ -237,24 +233,24 @@ local function map_row(values)
     row.scale = row.decimals and tonumber(scale_text) or wrong("scale", { text = scale_text })
     local size = math.abs(row.scale)
     if size == 0 then wrong("scale_zero", { text = scale_text }) end
-    if not (size >= SCALE_MIN and size <= SCALE_MAX) then -- also 1e999 (inf)
+    if not (size >= FORMAT.scale_min and size <= FORMAT.scale_max) then -- also 1e999 (inf): finite results
       wrong("scale_range", { text = scale_text })
     end
   end
   -- (a read-only parameter's write is warned, its refusal named: dissector/devices/access.py)
-  row.read_only = choice(values, "access", string.upper, "", ACCESS) == "R" or nil
+  row.read_only = choice(values, "access", string.upper, "", FORMAT.access) == "R" or nil
   row.enum = map_pairs(values.enum or "", "enum")
   row.bits = map_pairs(values.bits or "", "bits")
   local signed = choice(values, "signed", tostring, "", SIGNED)
-  local kind = choice(values, "type", string.lower, FORMAT.default_types[signed == "1" and 2 or 1], TYPES)
-  local words = TYPES[kind]
+  local kind = choice(values, "type", string.lower, FORMAT.default_types[signed == "1" and 2 or 1], FORMAT.types)
+  local words = FORMAT.types[kind]
   -- (the signed cell a type agrees with, when both are given: a float32 takes none)
   local agrees = kind ~= "float32" and (FORMAT.signed_types[kind] and "1" or "0") or ""
   if strip(values.type or "") ~= "" and signed ~= "" and signed ~= agrees then
     wrong("signed_type", { text = signed, kind = kind })
   end
   row.signed = (signed == "1" or FORMAT.signed_types[kind]) or nil
-  local order = choice(values, "order", string.upper, FORMAT.order_list[1], ORDERS)
+  local order = choice(values, "order", string.upper, FORMAT.order_list[1], FORMAT.orders)
   if words == 1 and order ~= FORMAT.order_list[1] then
     wrong("order_one_word", { text = order, kind = kind })
   end
@@ -284,8 +280,8 @@ end
 
 -- The separator of a map from its header line: the one of SEPARATORS that splits it most (maps.py).
 local function sniff(header)
-  local best, most = SEPARATORS[1], 0
-  for _, separator in ipairs(SEPARATORS) do
+  local best, most = FORMAT.separators[1], 0
+  for _, separator in ipairs(FORMAT.separators) do
     local count = select(2, header:gsub(separator, ""))
     if count > most then best, most = separator, count end
   end
@@ -305,9 +301,9 @@ local function read_map(text, origin)
   end
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
   local header, rows, order, delimiter, number = nil, {}, {}, ",", 0
-  local named = {} -- (code, ASCII case folded as --watch matches it -> { its table, its address })
-  local references = {} -- (table -> address -> the reference that named it first: maps.py reference_twice)
-  local lines = {} -- (table -> address -> its line: the rows, or a reference map's 3X rows)
+  local named = {} -- (code, ASCII case folded as --watch matches it -> the row that named it first)
+  -- (row -> where it was read: its line, reference, address and table, the rows or a reference map's 3X rows)
+  local placed = {}
   -- (lines end where str.splitlines ends them: \r\n, \r, \n, \v, \f, \x1c-\x1e, U+0085, U+2028, U+2029)
   text = text:gsub("\r\n", "\n"):gsub("[\r\v\f\28-\30]", "\n")
   text = text:gsub("\194\133", "\n"):gsub("\226\128[\168\169]", "\n")
@@ -324,7 +320,7 @@ local function read_map(text, origin)
         local named, twice = {}, false -- (the columns named, and whether one is named twice: told last)
         for index, cell in ipairs(cells) do
           local name = strip(cell):lower()
-          if not KNOWN_COLUMN[name] and name ~= REFERENCE then wrong("unknown_column", { name = name }) end
+          if not FORMAT.columns[name] and name ~= REFERENCE then wrong("unknown_column", { name = name }) end
           header[index], named[name], twice = name, true, twice or named[name] ~= nil
         end
         if named[REFERENCE] then
@@ -352,30 +348,29 @@ local function read_map(text, origin)
         local address, row = map_row(values)
         local input = reference ~= nil and reference:sub(1, 1) == "3"
         local into = input and reference_rows[rows] or rows
-        lines[into], references[into] = lines[into] or {}, references[into] or {}
-        if into[address] ~= nil and reference ~= nil then
+        local before = placed[into[address]]
+        if before ~= nil and reference ~= nil then
           wrong("reference_twice", { text = reference, table = input and "input" or "holding", address = address,
-            first = references[into][address], line = lines[into][address] })
+            first = before.reference, line = before.line })
         end
-        if into[address] ~= nil then wrong("address_twice", { address = address, line = lines[into][address] }) end
-        references[into][address] = reference
-        local first = named[row.code:upper()]
+        if before ~= nil then wrong("address_twice", { address = address, line = before.line }) end
+        local first = placed[named[row.code:upper()]]
         if first ~= nil then
-          wrong("code_twice", { code = row.code, address = first[2], line = lines[first[1]][first[2]] })
+          wrong("code_twice", { code = row.code, address = first.address, line = first.line })
         end
-        named[row.code:upper()] = { into, address }
-        into[address], lines[into][address] = row, number
-        order[#order + 1] = { into, address }
+        named[row.code:upper()] = row
+        into[address], placed[row] = row, { line = number, reference = reference, address = address, into = into }
+        order[#order + 1] = row
       end
     end
   end
   -- (a 32-bit row's second register defined as a row of its own: told once the file is read, rows in order)
-  for _, key in ipairs(order) do
-    local into, first = key[1], key[2]
-    local row, second = into[first], first + 1
-    if row.words == 2 and into[second] ~= nil then
-      line_read = format("%s:%d: ", origin, lines[into][second])
-      wrong("second_register", { address = second, code = row.code, kind = row.kind, line = lines[into][first] })
+  for _, row in ipairs(order) do
+    local at = placed[row]
+    local second = at.address + 1
+    if row.words == 2 and at.into[second] ~= nil then
+      line_read = format("%s:%d: ", origin, placed[at.into[second]].line)
+      wrong("second_register", { address = second, code = row.code, kind = row.kind, line = at.line })
     end
   end
   line_read = origin .. ": "

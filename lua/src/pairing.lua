@@ -34,8 +34,7 @@ local function listening_since(st, slave)
   if listening == nil or slave == 0 then return nil end
   local since = listening[slave]
   if since == nil then since = st.listening_all end
-  if since == false then return nil end
-  return since
+  return since or nil -- (false: left the mode)
 end
 
 -- The slave leaves the mode (a broadcast 08/04 keeps the others in it).

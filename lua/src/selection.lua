@@ -30,15 +30,15 @@ local function settled(judged)
 end
 
 -- No device for the slave (none chosen, or the one chosen taken back) while its traffic may still choose
--- one (Selector.open): its frames are provisional. (Written out where every frame asks: lane.quiet, select_device.)
+-- one (Selector.open): its frames are provisional. (Written out where every frame asks: lane.quiet.)
 local function open(judged)
   local choice = judged.choice
   return (choice == nil or choice.profile == FALLBACK) and not settled(judged)
 end
 
 -- A candidate's map as traffic is judged against it: its own rows and the map layers given for it; FC4's
--- registers judged against a map's 3X rows where the device names them apart (layered_rows' inputs).
-local INPUT_FUNCTIONS = DATA.map_format.input_functions
+-- registers judged against a map's 3X rows where the device names them apart (layered_rows' inputs;
+-- INPUT_FUNCTIONS: lua/src/device.lua's).
 local function candidate_rows(name, fn)
   config.fit_rows = config.fit_rows or made_once(function(candidate)
     local rows, inputs = layered_rows(PROFILES[candidate], function(layer) return layer.profile == candidate end)
@@ -254,9 +254,7 @@ local function select_device(st, f, b)
     local judged = slave ~= 0 and st.judged[slave]
     -- (decoded again, the capture so far is read as a file: no frame provisional; a record read after
     -- that, in a capture that goes on, is read once again: lane.again's `going_on`)
-    local choice = judged and judged.choice -- (open(judged), written out)
-    if judged and (choice == nil or choice.profile == FALLBACK) and not settled(judged)
-        and (st.frozen == nil or st.going_on) then
+    if judged and open(judged) and (st.frozen == nil or st.going_on) then
       f.provisional = true
       st.provisional = true -- (lane.again: the later passes show no frame provisional)
       hold(st, f, b)

@@ -153,11 +153,12 @@ end
 
 -- Every value at 16#8000 where the device answers an exception when every parameter is unreadable (p.38;
 -- annotator._all_marked): one at least is the value itself, so each is ambiguous and none is followed.
-local function all_marked(f, device, count, value_at, protected)
+-- (the run's count values from b[first] on)
+local function all_marked(f, device, count, b, first, protected)
   local code = device.profile.all_protected_exception
   if code == nil then return false end
-  for index = 0, count - 1 do
-    if value_at(index) ~= protected then return false end
+  for k = first, first + 2 * count - 2, 2 do
+    if b[k] * 256 + b[k + 1] ~= protected then return false end
   end
   note(f, say("all_marked", { protected = protected, device = device.profile.device, code = code }))
   return true
@@ -211,9 +212,8 @@ local function annotate_registers(f, device, run, b, read)
   local protected = read and device.profile.protected_value or nil
   local count, first = run.count, run.first
   local multi = count > 1
-  if multi and protected ~= nil and b[first] * 256 + b[first + 1] == protected -- (the usual answer: no closure)
-      and all_marked(f, device, count, function(index) return b[first + 2 * index] * 256 + b[first + 2 * index + 1] end,
-        protected) then
+  if multi and protected ~= nil and b[first] * 256 + b[first + 1] == protected -- (the usual answer: no call)
+      and all_marked(f, device, count, b, first, protected) then
     protected = nil
     run.status = {}
     for index = 0, count - 1 do run.status[index] = "ambiguous" end
