@@ -5240,8 +5240,7 @@ local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, F
 local function ends_record(s, b, i, n)
   local slave, code = b[i], b[i + 1]
   local list = interpretations(s, slave, code, b, i, n)
-  local echo = s.echo
-  local holds = (echo ~= nil and s.expect == slave * 256 + code and i + 1 + #echo >= n) and n + 1 or math.huge
+  local holds = (s.echo ~= nil and s.expect == slave * 256 + code and i + 1 + #s.echo >= n) and n + 1 or math.huge
   for index = 1, #list do
     local length, is_scan, walk, wanted = list[index][2](b, i, n)
     if length == NEED then holds = math.min(holds, n + 1) end
@@ -5262,8 +5261,7 @@ end
 
 -- The record ends' answers to ends_record for one stream and state (the answer awaited, its echo: reach.py EndAnswers):
 -- `answered` by stream offset, `trues` those true (ascending), `expiry` by the stream end at which they may change the
--- offsets to ask again, low .. high the span whose every record end is answered (one-byte records: each scan asked
--- some 250 again a byte).
+-- offsets to ask again, low .. high the span whose every record end is answered (one-byte records: 250 a byte).
 local ends = { count = math.huge }
 
 local function answer_end(s, b, offset, n)
@@ -5293,6 +5291,8 @@ end
 local function framed_reach(s, b, i, n)
   local base = s.base
   local last, low, high = base + n, base + i + 1, base + math.min(n - MIN_ADU + 1, i + MAX_ADU)
+  local ahead = s.boundaries[first_above(s.boundaries, base + i, 1)]
+  if ahead == nil or ahead >= high then return n end -- (no record end to weigh: a record's own frame, mostly)
   local known = ends
   if known.s ~= s or known.expect ~= s.expect or known.echo ~= s.echo or last < known.last
       or last > known.last + MAX_ADU or known.count > 4 * MAX_ADU then
@@ -5310,9 +5310,9 @@ local function framed_reach(s, b, i, n)
   known.last = last
   if high > low then
     if low > known.high or high < known.low then known.low, known.high = low, low end -- (a span apart: anew)
-    answer_ends(s, b, low, known.low, n) -- (the record ends before the span and after it)
-    answer_ends(s, b, known.high, high, n)
-    known.low, known.high = math.min(low, known.low), math.max(high, known.high)
+    if low < known.low then answer_ends(s, b, low, known.low, n) end -- (the record ends before it, after it)
+    if high > known.high then answer_ends(s, b, known.high, high, n) end
+    known.low, known.high = low < known.low and low or known.low, high > known.high and high or known.high
   end
   local first = known.trues[first_above(known.trues, low - 1, 1)]
   return first ~= nil and first < high and first - base or n
@@ -9216,7 +9216,7 @@ take_items = function(st, items, record, showing)
       closed = index
     end
   end
-  drop_first(open, closed)
+  if closed > 0 then drop_first(open, closed) end
 end
 
 -- The functions whose answer is a run of the registers or bits its request asked for, from its fourth byte:

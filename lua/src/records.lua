@@ -233,7 +233,7 @@ take_items = function(st, items, record, showing)
       closed = index
     end
   end
-  drop_first(open, closed)
+  if closed > 0 then drop_first(open, closed) end
 end
 
 -- The functions whose answer is a run of the registers or bits its request asked for, from its fourth byte:
