@@ -5013,14 +5013,15 @@ end
 -- ---- vw3.stream: lua/src/stream.lua ----
 package.preload["vw3.stream"] = function(...)
 -- vw3.stream: the byte stream the framers read: record boundaries and times, noise runs, the glitch rule.
--- Mirrors dissector/framing/stream.py.
+-- Mirrors dissector/framing/stream.py, dissector/framing/evidence.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.stream"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, ECHO_CODES, FRAMING, MAX_ADU, MIN_ADU, NEED = DATA, ECHO_CODES, FRAMING, MAX_ADU, MIN_ADU, NEED
-local NOISE, NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo = NOISE, NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo
-local counted, crc_string_ok, data_bytes, floor, format = counted, crc_string_ok, data_bytes, floor, format
-local ipairs, math, pairs, string, table, type = ipairs, math, pairs, string, table, type
+local DATA, ECHO_CODES, FRAMING, MAX_ADU, MAX_SLAVE = DATA, ECHO_CODES, FRAMING, MAX_ADU, MAX_SLAVE
+local MIN_ADU, NEED, NOISE, NOISE_ITEM_MAX, REQUEST = MIN_ADU, NEED, NOISE, NOISE_ITEM_MAX, REQUEST
+local RESPONSE, await_echo, counted, crc_string_ok = RESPONSE, await_echo, counted, crc_string_ok
+local data_bytes, format, ipairs, math, pairs, string = data_bytes, format, ipairs, math, pairs, string
+local table, type = table, type
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request): a record that is the usual answer to the
@@ -5041,16 +5042,23 @@ local GLITCH = FRAMING.glitch_bytes
 -- times over. The index of the first entry of `list` above `value` (past the end: none); step 2: the entries at
 -- odd indices alone (s.times' offsets).
 local function first_above(list, value, step)
-  local count = #list
-  if count <= 16 then -- (a few entries, the usual case: looked at in turn, no call of floor)
+  local count = #list -- (a multiple of step: s.times holds pairs)
+  if count <= 16 then -- (a few entries, the usual case: looked at in turn)
     for index = 1, count, step do
       if list[index] > value then return index end
     end
-    return floor((count + step - 1) / step) * step + 1
+    return count + 1
   end
-  local low, high = 1, floor((#list + step - 1) / step) + 1 -- (entry numbers; the answer is in low .. high)
+  local low, high = 1, count / step + 1 -- (entry numbers; the answer is in low .. high)
+  -- (first where an even spread of the entries puts it: one-byte records' are, and a bisection of them was most
+  -- of the cost of their bytes)
+  local oldest, newest = list[1], list[count - step + 1]
+  local guess = oldest < value and value < newest and (value - oldest) * (high - 2) / (newest - oldest) + 1 or 1
+  guess = guess - guess % 1
+  if list[guess * step - step + 1] <= value and list[guess * step + 1] > value then return guess * step + 1 end
   while low < high do
-    local mid = floor((low + high) / 2)
+    local mid = (low + high) / 2
+    mid = mid - mid % 1 -- (floor, without a call: most of a one-byte record's look-ups' cost)
     if list[mid * step - step + 1] > value then high = mid else low = mid + 1 end
   end
   return low * step - step + 1
@@ -5073,6 +5081,12 @@ end
 
 local function boundary_at(s, i)
   return first_after(s, s.boundaries, i - 1, i) == i
+end
+
+-- Does a record start at i (stream.py _record_starts_at)? Every record's start is in s.times while its bytes are.
+local function record_start(s, i)
+  local times = s.times
+  return times[first_above(times, s.base + i - 1, 2)] == s.base + i
 end
 
 -- The stream offset's time: the time of the record its byte came in (stream.py _time_at). s.times
@@ -5329,6 +5343,18 @@ local function emit(s, frame, items)
   expect_after(s, frame)
 end
 
+-- A request whose fields only a real one has (framing/evidence.py): a read within its quantity limits,
+-- a coil set ON or OFF (the requests whose lifting rule names a coil value: FC5).
+local PLAUSIBLE_READS, COIL_REQUESTS = DATA.protocol.plausible_reads, DATA.protocol.coil_requests
+local COIL_VALUES = DATA.protocol.coil_values
+local function plausible_request(b, i, length)
+  if length ~= 8 or b[i] < 1 or b[i] > MAX_SLAVE then return false end
+  local code, word = b[i + 1], b[i + 4] * 256 + b[i + 5]
+  if COIL_REQUESTS[code] then return COIL_VALUES[word] == true end
+  local limits = PLAUSIBLE_READS[code]
+  return limits ~= nil and limits[1] <= word and word <= limits[2] and b[i + 2] * 256 + b[i + 3] + word <= 0x10000
+end
+
 -- Is a reading of `kind` and `length` at the answer awaited's start a normal answer of another length than its
 -- request implies (rules.py Awaiting._not_the_answer)? Its byte count cannot be the answer's: at the end of the
 -- capture the bytes are the next request (0C 03 20 D0 after a read of 3 registers: not a byte count of 32).
@@ -5444,7 +5470,7 @@ local function cut_stream(s, bytes, time, part, number, items)
   s.times, s.boundaries, s.silences = { start, time or false }, { start + n }, {}
   s.expect, s.echo, s.framed_end = nil, nil, nil
   s.glitches_only, s.noise_cut = true, false
-  local record = { number = number, start = start, length = n, waiting = nil }
+  local record = { number = number, start = start, length = n, waiting = n }
   s.open[#s.open + 1], s.last = record, record
   return record
 end
@@ -5453,14 +5479,15 @@ M.add_skipped, M.await_answer, M.awaits_answer = add_skipped, await_answer, awai
 M.boundary_at, M.cut_reason, M.cut_stream, M.drop_first = boundary_at, cut_reason, cut_stream, drop_first
 M.emit, M.expect_after, M.first_above, M.first_after = emit, expect_after, first_above, first_after
 M.flush_noise, M.lane, M.no_frame, M.not_the_answer = flush_noise, lane, no_frame, not_the_answer
-M.repeats, M.silence_after, M.silent_before, M.time_at = repeats, silence_after, silent_before, time_at
+M.plausible_request, M.record_start, M.repeats = plausible_request, record_start, repeats
+M.silence_after, M.silent_before, M.time_at = silence_after, silent_before, time_at
 M.whole_crc_good = whole_crc_good
 end
 
 -- ---- vw3.rtu: lua/src/rtu.lua ----
 package.preload["vw3.rtu"] = function(...)
 -- vw3.rtu: RTU framing: frames by their length rules and CRC, damaged frames, CRC scans, the line's evidence.
--- Mirrors dissector/framing/rtu.py, dissector/framing/evidence.py.
+-- Mirrors dissector/framing/rtu.py, dissector/framing/reach.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
@@ -5471,65 +5498,95 @@ local TOO_SHORT, add_noise, add_skipped, awaited = TOO_SHORT, add_noise, add_ski
 local boundary_at, counted, crc16, crc_lengths, crc_ok_at = boundary_at, counted, crc16, crc_lengths, crc_ok_at
 local crc_scan, cut_reason, emit, first_above, first_after = crc_scan, cut_reason, emit, first_above, first_after
 local interpretations, math, no_frame, not_the_answer = interpretations, math, no_frame, not_the_answer
-local possible_start, repeats, scanned, silence_after = possible_start, repeats, scanned, silence_after
-local table, time_at = table, time_at
+local plausible_request, possible_start, record_start = plausible_request, possible_start, record_start
+local repeats, scanned, silence_after, table, time_at = repeats, scanned, silence_after, table, time_at
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 
 -- Does a layout at i check out and end where its record does (a code without a length rule: its CRC checks at
 -- the record's end)? The source says a frame ends there: a glitch-byte reading of b[i] before a longer frame
 -- crossing that end is not waited for, which in a single pass (tshark without -2) held every later record.
--- Second, whether the answer stays with more bytes (settled): nothing it weighed reached the stream's end n
--- (a length rule that needs more bytes, a frame ending at n or past it, a scan with no record end after i,
--- an echo awaited that the bytes have not all repeated yet); the bytes before n and record ends never change.
+-- Second, the buffer length up to which more bytes cannot change the answer (reach.py _record_end's `until`): n + 1
+-- for a rule that needs more bytes, a frame ending at n, a scan with no record end after i or an echo not all come;
+-- a reading's end past n; the byte an FC43 object walk stopped short of (its fourth value, `wanted`), past it.
 local function ends_record(s, b, i, n)
   local slave, code = b[i], b[i + 1]
   local list = interpretations(s, slave, code, b, i, n)
-  local echo = s.echo
-  local settled = not (echo ~= nil and s.expect == slave * 256 + code and i + 1 + #echo >= n)
+  local holds = (s.echo ~= nil and s.expect == slave * 256 + code and i + 1 + #s.echo >= n) and n + 1 or math.huge
   for index = 1, #list do
-    local length, is_scan, walk = list[index][2](b, i, n)
-    -- (a rule's length is its bytes' alone but for NEED and the FC43 object walk's: the walk's length, NEED or
-    -- at n or past it, says that more bytes may change it)
-    if length == NEED or walk == NEED or walk ~= nil and i + walk >= n then settled = false end
-    if is_scan then -- (reach.py _ends_record: the record's length, from the scan's minimum on)
+    local length, is_scan, walk, wanted = list[index][2](b, i, n)
+    if length == NEED then holds = math.min(holds, n + 1) end
+    if walk == NEED then holds = math.min(holds, i + (wanted or n - i) + 1)
+    elseif walk ~= nil and i + walk > n then holds = math.min(holds, i + walk) end
+    if is_scan then -- (reach.py _record_end: the record's length, from the scan's minimum on)
       local stop = first_after(s, s.boundaries, i, n) -- (the first record end after i)
-      if stop == nil then settled = false end
+      if stop == nil then holds = math.min(holds, n + 1) end
       length = stop ~= nil and stop - i >= length and stop - i or 0
     end
     if length >= MIN_ADU and length <= MAX_ADU then
-      if i + length >= n then settled = false end
-      if i + length <= n and boundary_at(s, i + length) and crc_ok_at(b, i, length) then return true, settled end
+      if i + length >= n then holds = math.min(holds, i + length > n and i + length or n + 1) end
+      if i + length <= n and boundary_at(s, i + length) and crc_ok_at(b, i, length) then return true, holds end
     end
   end
-  return false, settled
+  return false, holds
 end
 
--- A record end's answer to ends_record, with the state it was given in (the stream's end, the answer awaited and
--- its echo: stream.py _ends_memo): each CRC scan weighs the record ends ahead of it, asked again for every start;
--- a settled answer stays for a longer stream (one-byte records: each record asked again those of every record
--- ahead, some 87 of them).
-local ends_memo, ends_known = {}, 0
+-- The record ends' answers to ends_record for one stream and state (the answer awaited, its echo: reach.py EndAnswers):
+-- `answered` by stream offset, `trues` those true (ascending), `expiry` by the stream end at which they may change the
+-- offsets to ask again, low .. high the span whose every record end is answered (one-byte records: 250 a byte).
+local ends = { count = math.huge }
+
+local function answer_end(s, b, offset, n)
+  local answer, holds = ends_record(s, b, offset - s.base, n)
+  local trues, expiry = ends.trues, ends.expiry
+  local at = first_above(trues, offset - 1, 1)
+  if answer and trues[at] ~= offset then table.insert(trues, at, offset)
+  elseif not answer and trues[at] == offset then table.remove(trues, at) end
+  if not ends.answered[offset] then ends.answered[offset], ends.count = true, ends.count + 1 end
+  local stop = s.base + holds -- (math.huge: never asked again)
+  expiry[stop] = expiry[stop] or {}
+  table.insert(expiry[stop], offset)
+end
+
+-- Answer the record ends from low up to before high not answered yet.
+local function answer_ends(s, b, low, high, n)
+  local boundaries = s.boundaries
+  for index = first_above(boundaries, low - 1, 1), #boundaries do
+    local offset = boundaries[index]
+    if offset >= high then return end
+    if not ends.answered[offset] then answer_end(s, b, offset, n) end
+  end
+end
 
 -- Where a CRC scan from i stops (reach.py _framed_reach): the first record after i that is a frame of its own, else
 -- n. A scan across it read noise and that frame as one frame, and waited for bytes past it in one pass.
 local function framed_reach(s, b, i, n)
-  local base, ends = s.base, s.boundaries
-  local stop, last = base + math.min(n - MIN_ADU + 1, i + MAX_ADU), base + n
-  if ends_known > 4 * MAX_ADU then ends_memo, ends_known = {}, 0 end
-  for index = first_above(ends, base + i, 1), #ends do -- (ascending: the first that is a frame of its own)
-    local offset = ends[index]
-    if offset >= stop then break end
-    local known = ends_memo[offset]
-    if known == nil or known[1] ~= s or known[3] ~= s.expect or known[4] ~= s.echo
-        or known[2] ~= last and not (known[6] and known[2] < last) then
-      local answer, settled = ends_record(s, b, offset - base, n)
-      if known == nil then ends_known = ends_known + 1 end
-      known = { s, last, s.expect, s.echo, answer, settled }
-      ends_memo[offset] = known
-    end
-    if known[5] then return offset - base end
+  local base = s.base
+  local last, low, high = base + n, base + i + 1, base + math.min(n - MIN_ADU + 1, i + MAX_ADU)
+  local ahead = s.boundaries[first_above(s.boundaries, base + i, 1)]
+  if ahead == nil or ahead >= high then return n end -- (no record end to weigh: a record's own frame, mostly)
+  local known = ends
+  if known.s ~= s or known.expect ~= s.expect or known.echo ~= s.echo or last < known.last
+      or last > known.last + MAX_ADU or known.count > 4 * MAX_ADU then
+    known = { s = s, expect = s.expect, echo = s.echo, last = last, answered = {}, trues = {}, expiry = {},
+      count = 0, low = low, high = low }
+    ends = known
   end
-  return n
+  for stop = known.last + 1, last do -- (answers the bytes come since may change: asked again)
+    local list = known.expiry[stop]
+    known.expiry[stop] = nil
+    for index = 1, list and #list or 0 do
+      if list[index] > base then answer_end(s, b, list[index], n) else known.answered[list[index]] = nil end
+    end
+  end
+  known.last = last
+  if high > low then
+    if low > known.high or high < known.low then known.low, known.high = low, low end -- (a span apart: anew)
+    if low < known.low then answer_ends(s, b, low, known.low, n) end -- (the record ends before it, after it)
+    if high > known.high then answer_ends(s, b, known.high, high, n) end
+    known.low, known.high = low < known.low and low or known.low, high > known.high and high or known.high
+  end
+  local first = known.trues[first_above(known.trues, low - 1, 1)]
+  return first ~= nil and first < high and first - base or n
 end
 
 -- Would a reading at i of `length` bytes (NEED: more than there are) swallow a record that is a frame of its own,
@@ -5601,12 +5658,6 @@ local function intact_inside(s, b, i, length, n, final)
   return found
 end
 
--- Does a record start at i (stream.py _record_starts_at)? Every record's start is in s.times while its bytes are.
-local function record_start(s, i)
-  local times = s.times
-  return times[first_above(times, s.base + i - 1, 2)] == s.base + i
-end
-
 -- intact_inside, where records that are frames (a record that is this one, or the next one a frame: ends_record)
 -- say no frame it holds crosses its record's end: one is not waited for (bounded.py _framed_inside).
 local function framed_inside(s, b, i, length, n, final)
@@ -5644,18 +5695,6 @@ local function answered(s, b, i, stop, n, final)
     j = j + 1
   end
   return false
-end
-
--- A request whose fields only a real one has (framing/evidence.py): a read within its quantity limits,
--- a coil set ON or OFF (the requests whose lifting rule names a coil value: FC5).
-local PLAUSIBLE_READS, COIL_REQUESTS = DATA.protocol.plausible_reads, DATA.protocol.coil_requests
-local COIL_VALUES = DATA.protocol.coil_values
-local function plausible_request(b, i, length)
-  if length ~= 8 or b[i] < 1 or b[i] > MAX_SLAVE then return false end
-  local code, word = b[i + 1], b[i + 4] * 256 + b[i + 5]
-  if COIL_REQUESTS[code] then return COIL_VALUES[word] == true end
-  local limits = PLAUSIBLE_READS[code]
-  return limits ~= nil and limits[1] <= word and word <= limits[2] and b[i + 2] * 256 + b[i + 3] + word <= 0x10000
 end
 
 -- May a CRC-valid frame found inside noise count (rtu.py _confirmed)?
@@ -5850,15 +5889,13 @@ local function match(s, b, i, n, final)
   return NONE
 end
 
-
 -- The frame of `length` bytes at b[i], its first byte at stream offset `offset`, received at `time`.
 local function rtu_frame(b, i, offset, time, kind, length, crc_ok)
   local stop = i + length - 2
   local crc = b[stop] + b[stop + 1] * 256
-  local code = b[i + 1]
   -- (a frame that checks out has the CRC it carries: no need to compute it again)
   return {
-    kind = kind, offset = offset, length = length, slave = b[i], fn = code % 128,
+    kind = kind, offset = offset, length = length, slave = b[i], fn = b[i + 1] % 128,
     crc = crc, crc_expected = crc_ok and crc or crc16(b, i, stop), time = time,
     b = b, bi = i, data_at = i + 2, data_len = length - 4,
     number = 0, record = 0, at = 0, -- (set by take_items: in the constructor, the hash is made at its size)
@@ -5897,13 +5934,6 @@ local function reading_of(s, b, i, n, kind)
   end
   return nil
 end
-
--- The length the table's layout of `kind` at i takes (bounded.py _expected_length), 0: none it fixes.
-local function expected_length(s, b, i, n, kind)
-  local length, is_scan = reading_of(s, b, i, n, kind)
-  return length ~= nil and not is_scan and length >= MIN_ADU and length or 0
-end
-
 
 -- Does a layout at i whose length the bytes up to n hold check out (bounded.py _checks_out): an answer nobody
 -- asked for, shorter than a request, or cut before its request reading's byte count? (Unlike valid_frame_at, a
@@ -5952,8 +5982,8 @@ local function take_bounded(s, b, i, n, final, items)
   local kind = code >= 128 and EXCEPTION or (awaited(s, b, i, n) and RESPONSE or REQUEST)
   local offset = s.base + i
   local frame = rtu_frame(b, i, offset, time_at(s, offset), kind, length, true)
-  local expected = expected_length(s, b, i, n, kind)
-  if expected ~= 0 and expected ~= length then
+  local expected, is_scan = reading_of(s, b, i, n, kind) -- (the length its layout takes: bounded.py _expected_length)
+  if expected ~= nil and not is_scan and expected >= MIN_ADU and expected ~= length then
     frame.warnings = { say("frame_length", { length = length, expected = expected }) }
   end
   emit(s, frame, items)
@@ -9204,8 +9234,8 @@ local NOISE, PROFILES, READS, REQUEST, RESPONSE = NOISE, PROFILES, READS, REQUES
 local annotate_with, await_answer, await_echo, bit_slot = annotate_with, await_answer, await_echo, bit_slot
 local build_device, check_references, collectgarbage = build_device, check_references, collectgarbage
 local crc_slot, crc_string_ok, cut_stream, data_bytes = crc_slot, crc_string_ok, cut_stream, data_bytes
-local decode_frame, device_for, device_now, feed = decode_frame, device_for, device_now, feed
-local feed_whole, head_slot, ipairs, lane, math, new_state = feed_whole, head_slot, ipairs, lane, math, new_state
+local decode_frame, device_for, device_now, drop_first = decode_frame, device_for, device_now, drop_first
+local feed, feed_whole, head_slot, lane, math, new_state = feed, feed_whole, head_slot, lane, math, new_state
 local next, pack, pair, pair_part, pairs, pcall, put_flat = next, pack, pair, pair_part, pairs, pcall, put_flat
 local release_run, remember_writes, run_slot, sample_mode = release_run, remember_writes, run_slot, sample_mode
 local span_slot, story, string, string_of, takes_whole = span_slot, story, string, string_of, takes_whole
@@ -9356,22 +9386,19 @@ take_items = function(st, items, record, showing)
     st.count = st.count + 1
     item.number = st.count
     local offset, length = item.offset, item.length
-    local home = record
+    -- (the open records holding its bytes, open[oldest .. holding]: ascending, so the search stops past its end)
+    local oldest, holding = nil, 0
     for at = 1, #open do
       local earlier = open[at]
-      if earlier.start <= offset + length - 1 and offset + length - 1 < earlier.start + earlier.length then
-        home = earlier
-      end
+      if earlier.start >= offset + length then break end
+      if earlier.start + earlier.length > offset then oldest, holding = oldest or at, at end
     end
+    local home = open[holding] -- (the one holding its last byte, else `record`)
+    if home == nil or home.start + home.length < offset + length then home = record end
     item.record = home.number
     if showing and home ~= record then
       local from = {} -- (the numbers of the records holding its bytes, in order)
-      for at = 1, #open do
-        local earlier = open[at]
-        if earlier.start < offset + length and offset < earlier.start + earlier.length then
-          from[#from + 1] = earlier.number
-        end
-      end
+      for at = oldest, holding do from[#from + 1] = open[at].number end
       local late = st.late
       if late == nil or late.record ~= record then
         late = { record = record }
@@ -9399,9 +9426,10 @@ take_items = function(st, items, record, showing)
     else
       item.at = 0
       item.raw = raw_of(item)
-      for _, earlier in ipairs(open) do
+      for at = oldest or 1, holding do
+        local earlier = open[at]
         local from, to = earlier.start, earlier.start + earlier.length
-        if earlier ~= home and from < offset + length and offset < to then
+        if earlier ~= home then
           earlier.continued = earlier.continued or {}
           earlier.continued[#earlier.continued + 1] = {
             item = item.number, record = home.number, count = math.min(to, offset + length) - math.max(from, offset),
@@ -9427,20 +9455,22 @@ take_items = function(st, items, record, showing)
     local stop = record.start + record.length
     st.noise_for, st.noise_waiting = record, math.max(0, math.min(st.base, stop) - math.max(waiting_from, record.start))
   end
-  local count, kept = #open, 0 -- (compacted in place: no new list a record)
-  for index = 1, count do
+  -- (ascending: the records all of whose bytes are framed come first; from the first that starts at or after
+  -- waiting_from, every byte waits, as since it was opened with waiting = length)
+  local closed = 0
+  for index = 1, #open do
     local earlier = open[index]
     local waiting = earlier.start + earlier.length - waiting_from
     if waiting > 0 then
-      kept = kept + 1
-      open[kept] = earlier
+      if earlier.start >= waiting_from then break end
       earlier.waiting = math.min(waiting, earlier.length)
     else
       -- closed: all its bytes are framed (kept: its items and frame count)
       earlier.waiting, earlier.start, earlier.length, earlier.number = nil, nil, nil, nil
+      closed = index
     end
   end
-  for index = count, kept + 1, -1 do open[index] = nil end
+  if closed > 0 then drop_first(open, closed) end
 end
 
 -- The functions whose answer is a run of the registers or bits its request asked for, from its fourth byte:
@@ -9684,7 +9714,7 @@ dissect_record = function(st, bytes, time, number)
     end
   end
   -- (four keys: a fifth would double the table's hash, and records stay for the whole capture)
-  local record = { number = number, start = st.base + st.n, length = n, waiting = nil }
+  local record = { number = number, start = st.base + st.n, length = n, waiting = n }
   st.open[#st.open + 1] = record
   st.last = record
   take_items(st, feed(st, bytes, time, true, false, built), record, true)

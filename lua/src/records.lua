@@ -149,22 +149,19 @@ take_items = function(st, items, record, showing)
     st.count = st.count + 1
     item.number = st.count
     local offset, length = item.offset, item.length
-    local home = record
+    -- (the open records holding its bytes, open[oldest .. holding]: ascending, so the search stops past its end)
+    local oldest, holding = nil, 0
     for at = 1, #open do
       local earlier = open[at]
-      if earlier.start <= offset + length - 1 and offset + length - 1 < earlier.start + earlier.length then
-        home = earlier
-      end
+      if earlier.start >= offset + length then break end
+      if earlier.start + earlier.length > offset then oldest, holding = oldest or at, at end
     end
+    local home = open[holding] -- (the one holding its last byte, else `record`)
+    if home == nil or home.start + home.length < offset + length then home = record end
     item.record = home.number
     if showing and home ~= record then
       local from = {} -- (the numbers of the records holding its bytes, in order)
-      for at = 1, #open do
-        local earlier = open[at]
-        if earlier.start < offset + length and offset < earlier.start + earlier.length then
-          from[#from + 1] = earlier.number
-        end
-      end
+      for at = oldest, holding do from[#from + 1] = open[at].number end
       local late = st.late
       if late == nil or late.record ~= record then
         late = { record = record }
@@ -192,9 +189,10 @@ take_items = function(st, items, record, showing)
     else
       item.at = 0
       item.raw = raw_of(item)
-      for _, earlier in ipairs(open) do
+      for at = oldest or 1, holding do
+        local earlier = open[at]
         local from, to = earlier.start, earlier.start + earlier.length
-        if earlier ~= home and from < offset + length and offset < to then
+        if earlier ~= home then
           earlier.continued = earlier.continued or {}
           earlier.continued[#earlier.continued + 1] = {
             item = item.number, record = home.number, count = math.min(to, offset + length) - math.max(from, offset),
@@ -220,20 +218,22 @@ take_items = function(st, items, record, showing)
     local stop = record.start + record.length
     st.noise_for, st.noise_waiting = record, math.max(0, math.min(st.base, stop) - math.max(waiting_from, record.start))
   end
-  local count, kept = #open, 0 -- (compacted in place: no new list a record)
-  for index = 1, count do
+  -- (ascending: the records all of whose bytes are framed come first; from the first that starts at or after
+  -- waiting_from, every byte waits, as since it was opened with waiting = length)
+  local closed = 0
+  for index = 1, #open do
     local earlier = open[index]
     local waiting = earlier.start + earlier.length - waiting_from
     if waiting > 0 then
-      kept = kept + 1
-      open[kept] = earlier
+      if earlier.start >= waiting_from then break end
       earlier.waiting = math.min(waiting, earlier.length)
     else
       -- closed: all its bytes are framed (kept: its items and frame count)
       earlier.waiting, earlier.start, earlier.length, earlier.number = nil, nil, nil, nil
+      closed = index
     end
   end
-  for index = count, kept + 1, -1 do open[index] = nil end
+  if closed > 0 then drop_first(open, closed) end
 end
 
 -- The functions whose answer is a run of the registers or bits its request asked for, from its fourth byte:
@@ -477,7 +477,7 @@ dissect_record = function(st, bytes, time, number)
     end
   end
   -- (four keys: a fifth would double the table's hash, and records stay for the whole capture)
-  local record = { number = number, start = st.base + st.n, length = n, waiting = nil }
+  local record = { number = number, start = st.base + st.n, length = n, waiting = n }
   st.open[#st.open + 1] = record
   st.last = record
   take_items(st, feed(st, bytes, time, true, false, built), record, true)

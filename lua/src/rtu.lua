@@ -1,5 +1,5 @@
 -- vw3.rtu: RTU framing: frames by their length rules and CRC, damaged frames, CRC scans, the line's evidence.
--- Mirrors dissector/framing/rtu.py, dissector/framing/evidence.py.
+-- Mirrors dissector/framing/rtu.py, dissector/framing/reach.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
@@ -8,58 +8,88 @@ local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, F
 -- Does a layout at i check out and end where its record does (a code without a length rule: its CRC checks at
 -- the record's end)? The source says a frame ends there: a glitch-byte reading of b[i] before a longer frame
 -- crossing that end is not waited for, which in a single pass (tshark without -2) held every later record.
--- Second, whether the answer stays with more bytes (settled): nothing it weighed reached the stream's end n
--- (a length rule that needs more bytes, a frame ending at n or past it, a scan with no record end after i,
--- an echo awaited that the bytes have not all repeated yet); the bytes before n and record ends never change.
+-- Second, the buffer length up to which more bytes cannot change the answer (reach.py _record_end's `until`): n + 1
+-- for a rule that needs more bytes, a frame ending at n, a scan with no record end after i or an echo not all come;
+-- a reading's end past n; the byte an FC43 object walk stopped short of (its fourth value, `wanted`), past it.
 local function ends_record(s, b, i, n)
   local slave, code = b[i], b[i + 1]
   local list = interpretations(s, slave, code, b, i, n)
-  local echo = s.echo
-  local settled = not (echo ~= nil and s.expect == slave * 256 + code and i + 1 + #echo >= n)
+  local holds = (s.echo ~= nil and s.expect == slave * 256 + code and i + 1 + #s.echo >= n) and n + 1 or math.huge
   for index = 1, #list do
-    local length, is_scan, walk = list[index][2](b, i, n)
-    -- (a rule's length is its bytes' alone but for NEED and the FC43 object walk's: the walk's length, NEED or
-    -- at n or past it, says that more bytes may change it)
-    if length == NEED or walk == NEED or walk ~= nil and i + walk >= n then settled = false end
-    if is_scan then -- (reach.py _ends_record: the record's length, from the scan's minimum on)
+    local length, is_scan, walk, wanted = list[index][2](b, i, n)
+    if length == NEED then holds = math.min(holds, n + 1) end
+    if walk == NEED then holds = math.min(holds, i + (wanted or n - i) + 1)
+    elseif walk ~= nil and i + walk > n then holds = math.min(holds, i + walk) end
+    if is_scan then -- (reach.py _record_end: the record's length, from the scan's minimum on)
       local stop = first_after(s, s.boundaries, i, n) -- (the first record end after i)
-      if stop == nil then settled = false end
+      if stop == nil then holds = math.min(holds, n + 1) end
       length = stop ~= nil and stop - i >= length and stop - i or 0
     end
     if length >= MIN_ADU and length <= MAX_ADU then
-      if i + length >= n then settled = false end
-      if i + length <= n and boundary_at(s, i + length) and crc_ok_at(b, i, length) then return true, settled end
+      if i + length >= n then holds = math.min(holds, i + length > n and i + length or n + 1) end
+      if i + length <= n and boundary_at(s, i + length) and crc_ok_at(b, i, length) then return true, holds end
     end
   end
-  return false, settled
+  return false, holds
 end
 
--- A record end's answer to ends_record, with the state it was given in (the stream's end, the answer awaited and
--- its echo: stream.py _ends_memo): each CRC scan weighs the record ends ahead of it, asked again for every start;
--- a settled answer stays for a longer stream (one-byte records: each record asked again those of every record
--- ahead, some 87 of them).
-local ends_memo, ends_known = {}, 0
+-- The record ends' answers to ends_record for one stream and state (the answer awaited, its echo: reach.py EndAnswers):
+-- `answered` by stream offset, `trues` those true (ascending), `expiry` by the stream end at which they may change the
+-- offsets to ask again, low .. high the span whose every record end is answered (one-byte records: 250 a byte).
+local ends = { count = math.huge }
+
+local function answer_end(s, b, offset, n)
+  local answer, holds = ends_record(s, b, offset - s.base, n)
+  local trues, expiry = ends.trues, ends.expiry
+  local at = first_above(trues, offset - 1, 1)
+  if answer and trues[at] ~= offset then table.insert(trues, at, offset)
+  elseif not answer and trues[at] == offset then table.remove(trues, at) end
+  if not ends.answered[offset] then ends.answered[offset], ends.count = true, ends.count + 1 end
+  local stop = s.base + holds -- (math.huge: never asked again)
+  expiry[stop] = expiry[stop] or {}
+  table.insert(expiry[stop], offset)
+end
+
+-- Answer the record ends from low up to before high not answered yet.
+local function answer_ends(s, b, low, high, n)
+  local boundaries = s.boundaries
+  for index = first_above(boundaries, low - 1, 1), #boundaries do
+    local offset = boundaries[index]
+    if offset >= high then return end
+    if not ends.answered[offset] then answer_end(s, b, offset, n) end
+  end
+end
 
 -- Where a CRC scan from i stops (reach.py _framed_reach): the first record after i that is a frame of its own, else
 -- n. A scan across it read noise and that frame as one frame, and waited for bytes past it in one pass.
 local function framed_reach(s, b, i, n)
-  local base, ends = s.base, s.boundaries
-  local stop, last = base + math.min(n - MIN_ADU + 1, i + MAX_ADU), base + n
-  if ends_known > 4 * MAX_ADU then ends_memo, ends_known = {}, 0 end
-  for index = first_above(ends, base + i, 1), #ends do -- (ascending: the first that is a frame of its own)
-    local offset = ends[index]
-    if offset >= stop then break end
-    local known = ends_memo[offset]
-    if known == nil or known[1] ~= s or known[3] ~= s.expect or known[4] ~= s.echo
-        or known[2] ~= last and not (known[6] and known[2] < last) then
-      local answer, settled = ends_record(s, b, offset - base, n)
-      if known == nil then ends_known = ends_known + 1 end
-      known = { s, last, s.expect, s.echo, answer, settled }
-      ends_memo[offset] = known
-    end
-    if known[5] then return offset - base end
+  local base = s.base
+  local last, low, high = base + n, base + i + 1, base + math.min(n - MIN_ADU + 1, i + MAX_ADU)
+  local ahead = s.boundaries[first_above(s.boundaries, base + i, 1)]
+  if ahead == nil or ahead >= high then return n end -- (no record end to weigh: a record's own frame, mostly)
+  local known = ends
+  if known.s ~= s or known.expect ~= s.expect or known.echo ~= s.echo or last < known.last
+      or last > known.last + MAX_ADU or known.count > 4 * MAX_ADU then
+    known = { s = s, expect = s.expect, echo = s.echo, last = last, answered = {}, trues = {}, expiry = {},
+      count = 0, low = low, high = low }
+    ends = known
   end
-  return n
+  for stop = known.last + 1, last do -- (answers the bytes come since may change: asked again)
+    local list = known.expiry[stop]
+    known.expiry[stop] = nil
+    for index = 1, list and #list or 0 do
+      if list[index] > base then answer_end(s, b, list[index], n) else known.answered[list[index]] = nil end
+    end
+  end
+  known.last = last
+  if high > low then
+    if low > known.high or high < known.low then known.low, known.high = low, low end -- (a span apart: anew)
+    if low < known.low then answer_ends(s, b, low, known.low, n) end -- (the record ends before it, after it)
+    if high > known.high then answer_ends(s, b, known.high, high, n) end
+    known.low, known.high = low < known.low and low or known.low, high > known.high and high or known.high
+  end
+  local first = known.trues[first_above(known.trues, low - 1, 1)]
+  return first ~= nil and first < high and first - base or n
 end
 
 -- Would a reading at i of `length` bytes (NEED: more than there are) swallow a record that is a frame of its own,
@@ -131,12 +161,6 @@ local function intact_inside(s, b, i, length, n, final)
   return found
 end
 
--- Does a record start at i (stream.py _record_starts_at)? Every record's start is in s.times while its bytes are.
-local function record_start(s, i)
-  local times = s.times
-  return times[first_above(times, s.base + i - 1, 2)] == s.base + i
-end
-
 -- intact_inside, where records that are frames (a record that is this one, or the next one a frame: ends_record)
 -- say no frame it holds crosses its record's end: one is not waited for (bounded.py _framed_inside).
 local function framed_inside(s, b, i, length, n, final)
@@ -174,18 +198,6 @@ local function answered(s, b, i, stop, n, final)
     j = j + 1
   end
   return false
-end
-
--- A request whose fields only a real one has (framing/evidence.py): a read within its quantity limits,
--- a coil set ON or OFF (the requests whose lifting rule names a coil value: FC5).
-local PLAUSIBLE_READS, COIL_REQUESTS = DATA.protocol.plausible_reads, DATA.protocol.coil_requests
-local COIL_VALUES = DATA.protocol.coil_values
-local function plausible_request(b, i, length)
-  if length ~= 8 or b[i] < 1 or b[i] > MAX_SLAVE then return false end
-  local code, word = b[i + 1], b[i + 4] * 256 + b[i + 5]
-  if COIL_REQUESTS[code] then return COIL_VALUES[word] == true end
-  local limits = PLAUSIBLE_READS[code]
-  return limits ~= nil and limits[1] <= word and word <= limits[2] and b[i + 2] * 256 + b[i + 3] + word <= 0x10000
 end
 
 -- May a CRC-valid frame found inside noise count (rtu.py _confirmed)?
@@ -380,15 +392,13 @@ local function match(s, b, i, n, final)
   return NONE
 end
 
-
 -- The frame of `length` bytes at b[i], its first byte at stream offset `offset`, received at `time`.
 local function rtu_frame(b, i, offset, time, kind, length, crc_ok)
   local stop = i + length - 2
   local crc = b[stop] + b[stop + 1] * 256
-  local code = b[i + 1]
   -- (a frame that checks out has the CRC it carries: no need to compute it again)
   return {
-    kind = kind, offset = offset, length = length, slave = b[i], fn = code % 128,
+    kind = kind, offset = offset, length = length, slave = b[i], fn = b[i + 1] % 128,
     crc = crc, crc_expected = crc_ok and crc or crc16(b, i, stop), time = time,
     b = b, bi = i, data_at = i + 2, data_len = length - 4,
     number = 0, record = 0, at = 0, -- (set by take_items: in the constructor, the hash is made at its size)
@@ -427,13 +437,6 @@ local function reading_of(s, b, i, n, kind)
   end
   return nil
 end
-
--- The length the table's layout of `kind` at i takes (bounded.py _expected_length), 0: none it fixes.
-local function expected_length(s, b, i, n, kind)
-  local length, is_scan = reading_of(s, b, i, n, kind)
-  return length ~= nil and not is_scan and length >= MIN_ADU and length or 0
-end
-
 
 -- Does a layout at i whose length the bytes up to n hold check out (bounded.py _checks_out): an answer nobody
 -- asked for, shorter than a request, or cut before its request reading's byte count? (Unlike valid_frame_at, a
@@ -482,8 +485,8 @@ local function take_bounded(s, b, i, n, final, items)
   local kind = code >= 128 and EXCEPTION or (awaited(s, b, i, n) and RESPONSE or REQUEST)
   local offset = s.base + i
   local frame = rtu_frame(b, i, offset, time_at(s, offset), kind, length, true)
-  local expected = expected_length(s, b, i, n, kind)
-  if expected ~= 0 and expected ~= length then
+  local expected, is_scan = reading_of(s, b, i, n, kind) -- (the length its layout takes: bounded.py _expected_length)
+  if expected ~= nil and not is_scan and expected >= MIN_ADU and expected ~= length then
     frame.warnings = { say("frame_length", { length = length, expected = expected }) }
   end
   emit(s, frame, items)

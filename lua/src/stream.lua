@@ -1,5 +1,5 @@
 -- vw3.stream: the byte stream the framers read: record boundaries and times, noise runs, the glitch rule.
--- Mirrors dissector/framing/stream.py.
+-- Mirrors dissector/framing/stream.py, dissector/framing/evidence.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.stream"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
@@ -23,16 +23,23 @@ local GLITCH = FRAMING.glitch_bytes
 -- times over. The index of the first entry of `list` above `value` (past the end: none); step 2: the entries at
 -- odd indices alone (s.times' offsets).
 local function first_above(list, value, step)
-  local count = #list
-  if count <= 16 then -- (a few entries, the usual case: looked at in turn, no call of floor)
+  local count = #list -- (a multiple of step: s.times holds pairs)
+  if count <= 16 then -- (a few entries, the usual case: looked at in turn)
     for index = 1, count, step do
       if list[index] > value then return index end
     end
-    return floor((count + step - 1) / step) * step + 1
+    return count + 1
   end
-  local low, high = 1, floor((#list + step - 1) / step) + 1 -- (entry numbers; the answer is in low .. high)
+  local low, high = 1, count / step + 1 -- (entry numbers; the answer is in low .. high)
+  -- (first where an even spread of the entries puts it: one-byte records' are, and a bisection of them was most
+  -- of the cost of their bytes)
+  local oldest, newest = list[1], list[count - step + 1]
+  local guess = oldest < value and value < newest and (value - oldest) * (high - 2) / (newest - oldest) + 1 or 1
+  guess = guess - guess % 1
+  if list[guess * step - step + 1] <= value and list[guess * step + 1] > value then return guess * step + 1 end
   while low < high do
-    local mid = floor((low + high) / 2)
+    local mid = (low + high) / 2
+    mid = mid - mid % 1 -- (floor, without a call: most of a one-byte record's look-ups' cost)
     if list[mid * step - step + 1] > value then high = mid else low = mid + 1 end
   end
   return low * step - step + 1
@@ -55,6 +62,12 @@ end
 
 local function boundary_at(s, i)
   return first_after(s, s.boundaries, i - 1, i) == i
+end
+
+-- Does a record start at i (stream.py _record_starts_at)? Every record's start is in s.times while its bytes are.
+local function record_start(s, i)
+  local times = s.times
+  return times[first_above(times, s.base + i - 1, 2)] == s.base + i
 end
 
 -- The stream offset's time: the time of the record its byte came in (stream.py _time_at). s.times
@@ -311,6 +324,18 @@ local function emit(s, frame, items)
   expect_after(s, frame)
 end
 
+-- A request whose fields only a real one has (framing/evidence.py): a read within its quantity limits,
+-- a coil set ON or OFF (the requests whose lifting rule names a coil value: FC5).
+local PLAUSIBLE_READS, COIL_REQUESTS = DATA.protocol.plausible_reads, DATA.protocol.coil_requests
+local COIL_VALUES = DATA.protocol.coil_values
+local function plausible_request(b, i, length)
+  if length ~= 8 or b[i] < 1 or b[i] > MAX_SLAVE then return false end
+  local code, word = b[i + 1], b[i + 4] * 256 + b[i + 5]
+  if COIL_REQUESTS[code] then return COIL_VALUES[word] == true end
+  local limits = PLAUSIBLE_READS[code]
+  return limits ~= nil and limits[1] <= word and word <= limits[2] and b[i + 2] * 256 + b[i + 3] + word <= 0x10000
+end
+
 -- Is a reading of `kind` and `length` at the answer awaited's start a normal answer of another length than its
 -- request implies (rules.py Awaiting._not_the_answer)? Its byte count cannot be the answer's: at the end of the
 -- capture the bytes are the next request (0C 03 20 D0 after a read of 3 registers: not a byte count of 32).
@@ -426,7 +451,7 @@ local function cut_stream(s, bytes, time, part, number, items)
   s.times, s.boundaries, s.silences = { start, time or false }, { start + n }, {}
   s.expect, s.echo, s.framed_end = nil, nil, nil
   s.glitches_only, s.noise_cut = true, false
-  local record = { number = number, start = start, length = n, waiting = nil }
+  local record = { number = number, start = start, length = n, waiting = n }
   s.open[#s.open + 1], s.last = record, record
   return record
 end

@@ -191,6 +191,18 @@ def test_a_flood_of_a_short_pattern_costs_like_a_normal_capture(tmp_path: Path, 
     _within_bounds(f"1 MB of {pattern.hex(' ')} repeated", _flood(tmp_path / "flood.pcap", data), normal_cost)
 
 
+def test_one_byte_records_of_a_pattern_cost_like_a_normal_capture(tmp_path: Path, normal_cost: Cost) -> None:
+    # 64 Ki records (the normal capture has some 67,000), each one byte of 2B 0E repeated (a USB tap's reads):
+    # each record end is weighed as a frame's end, and slave 14's FC43 object walk from each odd byte waits for
+    # bytes 16 at a time. Each answer was asked again at every byte (reach.py RecordEnds keeps it while more
+    # bytes cannot change it) and every record still waiting was looked at for each record: 8.2 s for 10,240
+    # records, 27x the normal capture for these.
+    data = b"\x2b\x0e" * (1 << 15)
+    pcap = write_pcap(tmp_path / "one_byte_records.pcap",
+                      [(data[at:at + 1], 1767225600.0 + at / 1e3) for at in range(len(data))])
+    _within_bounds("64 Ki one-byte records of 2b 0e", pcap, normal_cost)
+
+
 def test_a_colon_flood_in_ascii_mode_keeps_noise_compactly(tmp_path: Path, normal_cost: Cost) -> None:
     # In ASCII mode every ':' of a flood is a noise item of its own (as vw3-decode shows it): 1 KB each
     # was kept (1.13 GB for 1 MB, 0.69 GB in 9 slots, 20-34 s). A run of the same noise is one entry now,
