@@ -2,7 +2,7 @@
 layout checks out is a frame's end the source gives (_ends_record), and a CRC scan, or a reading that waits for
 bytes, does not reach across such a record (_framed_reach, _crosses_framed_record). Answers are kept per record
 end while the stream's state and end stay, or while more bytes cannot change them (lua/src/rtu.lua
-ends_record's `settled`): one-byte records asked every record end ahead again for each byte (100 KB of
+ends_record's `holds`): one-byte records asked every record end ahead again for each byte (100 KB of
 `2b 0e` a record a byte took 70 s).
 """
 from __future__ import annotations
@@ -28,7 +28,7 @@ class RecordEnds:
 
     def _record_end(self, buf: bytearray, i: int, n: int) -> tuple[bool, int]:
         """_ends_record's answer, and the buffer length up to which more bytes cannot change it (exclusive; a
-        large number: none can; lua/src/rtu.lua ends_record's `settled` is this past n). A reading that needs
+        large number: none can; lua/src/rtu.lua ends_record's `holds`, math.huge there). A reading that needs
         more bytes holds until they come, one that ends past n until n reaches its end, one ending at n until n
         passes it (a silence may still make a record end there); an FC43 object walk that stops short of the
         bytes until the byte it needs comes; a scan that finds no record end before n, or an echo awaited that

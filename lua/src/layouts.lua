@@ -52,14 +52,16 @@ end
 -- Walk the FC43/14 object list: its count at `position`, then (id, length, value) per object from `start`.
 -- Where the walk does not end in a valid CRC (past the bytes there or an RTU frame, or its CRC fails), a CRC
 -- scan from the list's start (start + 2, rules.py _mei_objects), with the walk's length (NEED: past the
--- bytes) as a third value: the framer's damaged frame or answer cut by the end of the capture.
+-- bytes) as a third value: the framer's damaged frame or answer cut by the end of the capture; past the bytes,
+-- a fourth: the index of the byte it stopped short of (Scan.wanted: till it comes, lua/src/rtu.lua ends_record's
+-- answer holds).
 local function mei_objects(position, start)
   local minimum = start + 2
   return function(b, i, n)
     if i + position >= n then return NEED end
     local stop = start
     for _ = 1, b[i + position] do
-      if i + stop + 1 >= n then return minimum, true, NEED end
+      if i + stop + 1 >= n then return minimum, true, NEED, stop + 1 end
       stop = stop + 2 + b[i + stop + 1]
       if stop > MAX_ADU then return minimum, true, NONE end
     end
