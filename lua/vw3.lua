@@ -5437,22 +5437,29 @@ function lane.captured_in_part(number, captured, original)
   lane.parts[number] = { captured, original }
 end
 
--- What the bytes of a frame cut short tell (stream.py _part_fields, ascii.py's): `; slave 2, function 3`.
+-- What the bytes of a frame cut short tell (stream.py _part_fields, ascii.py's): its slave and function, nil
+-- where not captured.
 local HEX_DIGITS = DATA.ascii.hex_digits
 local function part_fields(s, bytes)
-  if s.mode ~= "ascii" then
-    local slave, code = string.byte(bytes, 1, 2)
-    if slave == nil then return "" end
-    return "; slave " .. slave .. (code ~= nil and ", function " .. code or "")
-  end
-  local fields = {}
-  for _, field in ipairs({ { "slave", 2 }, { "function", 4 } }) do
-    local high, low = string.byte(bytes, field[2], field[2] + 1)
+  if s.mode ~= "ascii" then return string.byte(bytes, 1, 2) end
+  local told = {}
+  for k, at in ipairs({ 2, 4 }) do
+    local high, low = string.byte(bytes, at, at + 1)
     if string.byte(bytes, 1) ~= 58 or low == nil or HEX_DIGITS[high] == nil or HEX_DIGITS[low] == nil then break end
-    fields[#fields + 1] = field[1] .. " " .. (HEX_DIGITS[high] * 16 + HEX_DIGITS[low]) -- (58 above: ':')
+    told[k] = HEX_DIGITS[high] * 16 + HEX_DIGITS[low] -- (58 above: ':')
   end
-  if fields[1] == nil then return "" end
-  return "; " .. table.concat(fields, ", ")
+  return told[1], told[2]
+end
+
+-- `captured in part (5 of its 9 bytes; slave 2, function 3; the answer to #1): its CRC cannot be checked`, written
+-- from the item's part (stream.py part_reason), never read back from the text.
+local function part_reason(part)
+  local told = {}
+  if part.slave ~= nil then told[#told + 1] = "slave " .. part.slave end
+  if part.fn ~= nil then told[#told + 1] = "function " .. part.fn end
+  return "captured in part (" .. part.captured .. " of its " .. part.original .. " bytes"
+    .. (told[1] ~= nil and "; " .. table.concat(told, ", ") or "")
+    .. (part.answers ~= nil and "; the answer to #" .. part.answers or "") .. "): its " .. part.check .. " cannot be checked"
 end
 
 -- A record captured in part, its bytes after the stream's (lua/src/records.lua cut_part closed it): its item added to
@@ -5463,10 +5470,10 @@ local function cut_stream(s, bytes, time, part, number, items)
   local n, start = #bytes, s.base
   local copy = {}
   for k = 1, n do copy[k] = string.byte(bytes, k) end
+  local slave, fn = part_fields(s, bytes)
+  local told = { captured = part[1], original = part[2], check = s.mode == "ascii" and "LRC" or "CRC", slave = slave, fn = fn }
   items[#items + 1] = {
-    kind = NOISE, offset = start, length = n, time = time, bytes = copy,
-    reason = "captured in part (" .. part[1] .. " of its " .. part[2] .. " bytes" .. part_fields(s, bytes)
-      .. "): its " .. (s.mode == "ascii" and "LRC" or "CRC") .. " cannot be checked",
+    kind = NOISE, offset = start, length = n, time = time, bytes = copy, part = told, reason = part_reason(told),
   }
   s.b, s.n, s.base = {}, 0, start + n
   s.times, s.boundaries, s.silences = { start, time or false }, { start + n }, {}
@@ -5481,8 +5488,8 @@ M.add_skipped, M.await_answer, M.awaits_answer = add_skipped, await_answer, awai
 M.boundary_at, M.cut_reason, M.cut_stream, M.drop_first = boundary_at, cut_reason, cut_stream, drop_first
 M.emit, M.expect_after, M.first_above, M.first_after = emit, expect_after, first_above, first_after
 M.flush_noise, M.lane, M.no_frame, M.not_the_answer = flush_noise, lane, no_frame, not_the_answer
-M.plausible_request, M.record_start, M.repeats = plausible_request, record_start, repeats
-M.silence_after, M.silent_before, M.time_at = silence_after, silent_before, time_at
+M.part_reason, M.plausible_request, M.record_start = part_reason, plausible_request, record_start
+M.repeats, M.silence_after, M.silent_before, M.time_at = repeats, silence_after, silent_before, time_at
 M.whole_crc_good = whole_crc_good
 end
 
@@ -6912,7 +6919,8 @@ package.preload["vw3.pairing"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer
-local next, note, release_run, say, string_of, warn = next, note, release_run, say, string_of, warn
+local next, note, part_reason, release_run, say, string_of = next, note, part_reason, release_run, say, string_of
+local warn = warn
 local PLAIN = DATA.plain_texts -- (the catalogue's texts without parameters: unmatched, never_answered, ...)
 local ECHO = DATA.pairing.echo
 -- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once, as
@@ -7186,15 +7194,11 @@ local function pair_part(st, item)
   if timeout ~= nil and item.time ~= nil and pending.time ~= nil and (item.time - pending.time) / NS > timeout then
     return
   end
-  local reason = item.reason
-  local slave, code = reason:match("; slave (%d+), function (%d+)%)")
-  if slave == nil then slave = reason:match("; slave (%d+)%)") end
-  -- (`+ 0`: the digits as a number, as tonumber would, without binding one more global here)
-  if slave == nil or slave + 0 ~= pending.slave then return end
-  if code ~= nil and code % 128 ~= pending.fn then return end
+  local part = item.part
+  if part.slave ~= pending.slave or (part.fn ~= nil and part.fn % 128 ~= pending.fn) then return end
   note(pending, "answer captured in part in #" .. item.number)
-  local at = reason:find("): ", 1, true)
-  item.reason = reason:sub(1, at - 1) .. "; the answer to #" .. pending.number .. reason:sub(at)
+  part.answers = pending.number
+  item.reason = part_reason(part)
   pending.fields = nil
   release_run(pending.registers)
   st.pending = nil

@@ -276,15 +276,11 @@ local function pair_part(st, item)
   if timeout ~= nil and item.time ~= nil and pending.time ~= nil and (item.time - pending.time) / NS > timeout then
     return
   end
-  local reason = item.reason
-  local slave, code = reason:match("; slave (%d+), function (%d+)%)")
-  if slave == nil then slave = reason:match("; slave (%d+)%)") end
-  -- (`+ 0`: the digits as a number, as tonumber would, without binding one more global here)
-  if slave == nil or slave + 0 ~= pending.slave then return end
-  if code ~= nil and code % 128 ~= pending.fn then return end
+  local part = item.part
+  if part.slave ~= pending.slave or (part.fn ~= nil and part.fn % 128 ~= pending.fn) then return end
   note(pending, "answer captured in part in #" .. item.number)
-  local at = reason:find("): ", 1, true)
-  item.reason = reason:sub(1, at - 1) .. "; the answer to #" .. pending.number .. reason:sub(at)
+  part.answers = pending.number
+  item.reason = part_reason(part)
   pending.fields = nil
   release_run(pending.registers)
   st.pending = nil

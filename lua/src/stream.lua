@@ -416,22 +416,29 @@ function lane.captured_in_part(number, captured, original)
   lane.parts[number] = { captured, original }
 end
 
--- What the bytes of a frame cut short tell (stream.py _part_fields, ascii.py's): `; slave 2, function 3`.
+-- What the bytes of a frame cut short tell (stream.py _part_fields, ascii.py's): its slave and function, nil
+-- where not captured.
 local HEX_DIGITS = DATA.ascii.hex_digits
 local function part_fields(s, bytes)
-  if s.mode ~= "ascii" then
-    local slave, code = string.byte(bytes, 1, 2)
-    if slave == nil then return "" end
-    return "; slave " .. slave .. (code ~= nil and ", function " .. code or "")
-  end
-  local fields = {}
-  for _, field in ipairs({ { "slave", 2 }, { "function", 4 } }) do
-    local high, low = string.byte(bytes, field[2], field[2] + 1)
+  if s.mode ~= "ascii" then return string.byte(bytes, 1, 2) end
+  local told = {}
+  for k, at in ipairs({ 2, 4 }) do
+    local high, low = string.byte(bytes, at, at + 1)
     if string.byte(bytes, 1) ~= 58 or low == nil or HEX_DIGITS[high] == nil or HEX_DIGITS[low] == nil then break end
-    fields[#fields + 1] = field[1] .. " " .. (HEX_DIGITS[high] * 16 + HEX_DIGITS[low]) -- (58 above: ':')
+    told[k] = HEX_DIGITS[high] * 16 + HEX_DIGITS[low] -- (58 above: ':')
   end
-  if fields[1] == nil then return "" end
-  return "; " .. table.concat(fields, ", ")
+  return told[1], told[2]
+end
+
+-- `captured in part (5 of its 9 bytes; slave 2, function 3; the answer to #1): its CRC cannot be checked`, written
+-- from the item's part (stream.py part_reason), never read back from the text.
+local function part_reason(part)
+  local told = {}
+  if part.slave ~= nil then told[#told + 1] = "slave " .. part.slave end
+  if part.fn ~= nil then told[#told + 1] = "function " .. part.fn end
+  return "captured in part (" .. part.captured .. " of its " .. part.original .. " bytes"
+    .. (told[1] ~= nil and "; " .. table.concat(told, ", ") or "")
+    .. (part.answers ~= nil and "; the answer to #" .. part.answers or "") .. "): its " .. part.check .. " cannot be checked"
 end
 
 -- A record captured in part, its bytes after the stream's (lua/src/records.lua cut_part closed it): its item added to
@@ -442,10 +449,10 @@ local function cut_stream(s, bytes, time, part, number, items)
   local n, start = #bytes, s.base
   local copy = {}
   for k = 1, n do copy[k] = string.byte(bytes, k) end
+  local slave, fn = part_fields(s, bytes)
+  local told = { captured = part[1], original = part[2], check = s.mode == "ascii" and "LRC" or "CRC", slave = slave, fn = fn }
   items[#items + 1] = {
-    kind = NOISE, offset = start, length = n, time = time, bytes = copy,
-    reason = "captured in part (" .. part[1] .. " of its " .. part[2] .. " bytes" .. part_fields(s, bytes)
-      .. "): its " .. (s.mode == "ascii" and "LRC" or "CRC") .. " cannot be checked",
+    kind = NOISE, offset = start, length = n, time = time, bytes = copy, part = told, reason = part_reason(told),
   }
   s.b, s.n, s.base = {}, 0, start + n
   s.times, s.boundaries, s.silences = { start, time or false }, { start + n }, {}

@@ -153,10 +153,11 @@ def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytes
     that exports a name as another."""
     plugin = PLUGIN.read_text(encoding="utf-8")
     pairing = plugin.split('package.preload["vw3.pairing"] = function(...)\n')[1]
-    assert pairing.split("\n")[4:7] == [
+    assert pairing.split("\n")[4:8] == [
         "local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)",
         "local DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer",
-        "local next, note, release_run, say, string_of, warn = next, note, release_run, say, string_of, warn"]
+        "local next, note, part_reason, release_run, say, string_of = next, note, part_reason, release_run, say, string_of",
+        "local warn = warn"]
     assert pairing.split("\nend\n\n-- ---- vw3.")[0].endswith("\nM.ended, M.pair, M.pair_part = ended, pair, pair_part")
     assert "M.pair" not in (SRC / "pairing.lua").read_text(encoding="utf-8")
     layouts = plugin.split('package.preload["vw3.layouts"] = function(...)\n')[1].split("\nend\n\n-- ---- vw3.")[0]
