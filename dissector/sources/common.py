@@ -141,6 +141,12 @@ class Input:
         self.position += len(part)
         return part
 
+    def seek(self, position: int) -> None:
+        """Go to byte `position` of a file read from its start (rereadable), what was given back forgotten."""
+        self._prefix = b""
+        self.stream.seek(position)
+        self.position = position
+
     def skip(self, count: int, piece: int = 65536) -> int:
         """Discard `count` bytes without holding them; returns how many there were."""
         skipped = 0
@@ -299,12 +305,16 @@ def _payload_chunks(inp: Input, length: int, time: Stamp | None, linktype: int, 
                     transport: Transport) -> Iterator[Chunk]:
     """The bus's bytes of a network record (record_chunks): its payload on the RTU ports, one chunk; a
     payload captured in part a PartChunk (the stream's cut: the bytes after it were lost)."""
+    if transport.outside(record):
+        inp.skip(length)
+        return
+    offset = inp.position
     data = inp.read(length)
     if len(data) < length:
         log.warn("truncated input", f"record {record} is cut short: {len(data)} of {length} bytes "
                  "(the capture ends inside it); the bytes that are there are decoded")
     known = len(transport.connections)
-    found = transport.take(linktype, data, record)
+    found = transport.take(linktype, data, record, offset)
     if known == 1 and len(transport.connections) == 2 and transport.only is None:
         # (a file is read once per connection, each its own bus: sources/interfaces.py; a pipe cannot be)
         log.warn("connections", "packets come from several connections on the RTU ports; their bytes are decoded "

@@ -13,7 +13,7 @@ from collections.abc import Iterator
 from dataclasses import replace
 
 from dissector.model import Chunk, Stamp
-from dissector.sources.ethernet import NETWORK_LINKTYPES, RtuPorts, Transport
+from dissector.sources.ethernet import NETWORK_LINKTYPES, RtuPorts, Span, Transport
 from dissector.sources.common import (
     LINKTYPE_RTAC_SERIAL,
     Input,
@@ -50,9 +50,10 @@ def is_pcap(head: bytes) -> bool:
 
 
 def read_pcap(inp: Input, log: WarningLog, chunk_size: int, ports: RtuPorts = RtuPorts(),
-              only: tuple[str, str, str] | None = None) -> PcapRecords:
-    """`ports`: a network link's RTU ports; `only`: the one connection read (sources/ethernet.py)."""
-    return PcapRecords(inp, log, chunk_size, ports, only)
+              only: tuple[str, str, str] | None = None, span: Span | None = None) -> PcapRecords:
+    """`ports`: a network link's RTU ports; `only`: the one connection read, over its `span` of the file's
+    records when given (sources/ethernet.py)."""
+    return PcapRecords(inp, log, chunk_size, ports, only, span)
 
 
 class PcapRecords:
@@ -61,8 +62,8 @@ class PcapRecords:
     was last recording (Dissector's `recorded`; the bulk reader sets it for the records it reads)."""
 
     def __init__(self, inp: Input, log: WarningLog, chunk_size: int, ports: RtuPorts = RtuPorts(),
-                 only: tuple[str, str, str] | None = None) -> None:
-        self.ports, self.only = ports, only
+                 only: tuple[str, str, str] | None = None, span: Span | None = None) -> None:
+        self.ports, self.only, self.span = ports, only, span
         self.transport: Transport | None = None  # a network link's (RTU over TCP/UDP)
         self.inp = inp
         self.log = log
@@ -74,6 +75,9 @@ class PcapRecords:
         self.extra = 0  # record header bytes after the standard 16 (modified pcap)
         self.recorded_until: Stamp | None = None
         self._header()  # (at once: its time units set the time column's decimals before any record)
+        if self.transport is not None and span is not None and rereadable(inp):  # (its first record's header)
+            inp.seek(span[2] - RECORD_HEADER_SIZE - self.extra)
+            self.record = span[0] - 1
         self._chunks = self.records(inp)
 
     def __iter__(self) -> PcapRecords:
@@ -109,7 +113,7 @@ class PcapRecords:
         self.linktype = network & 0xFFFF
         check_linktype(inp.name, self.linktype)
         if self.linktype in NETWORK_LINKTYPES:
-            self.transport = Transport(inp.name, self.ports, self.only)
+            self.transport = Transport(inp.name, self.ports, self.only, span=self.span)
         # (read ahead from a file alone, not a live feed: wiretap reads a variant's file only then, "that type
         # of pcap file can't be read from a pipe")
         if self.units == 1_000_000 and rereadable(inp):
@@ -190,6 +194,8 @@ class PcapRecords:
                                            original=original, transport=self.transport):
                     self.recorded_until = time if time is not None else self.recorded_until
                     yield chunk
+                if self.transport.past(self.record):  # (the connection read has no record after)
+                    return
                 continue
             chunks = record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size,
                                    self._stamped if self.linktype == LINKTYPE_RTAC_SERIAL else None, original)

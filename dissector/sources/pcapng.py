@@ -32,7 +32,7 @@ from dissector.sources.common import (
     outside_time_range,
     record_chunks,
 )
-from dissector.sources.ethernet import NETWORK_LINKTYPES, RtuPorts, Transport
+from dissector.sources.ethernet import NETWORK_LINKTYPES, RtuPorts, Span, Transport
 from dissector.sources.pcap import EpochRecord, within_day_zero
 from dissector.sources.trail import own_comment
 
@@ -100,10 +100,12 @@ class _Reader:
 
     def __init__(self, inp: Input, log: WarningLog, chunk_size: int, first_interface: bool = False,
                  only: int | None = None, tell_skipped: bool = True, where: str = "",
-                 ports: RtuPorts = RtuPorts(), connection: tuple[str, str, str] | None = None) -> None:
+                 ports: RtuPorts = RtuPorts(), connection: tuple[str, str, str] | None = None,
+                 span: Span | None = None) -> None:
         self.inp = inp
-        # A network interface's packets: the RTU ports' payloads (sources/ethernet.py; `connection`: its one read)
-        self.transport = Transport(inp.name, ports, connection)
+        # A network interface's packets: the RTU ports' payloads (sources/ethernet.py; `connection`: its one read,
+        # its records alone parsed, within `span`)
+        self.transport = Transport(inp.name, ports, connection, span=span)
         self.networked = False  # a network interface's packet was read
         # The warnings that number a record: `where` (the bus's title, `file: if_name`) first when the file is
         # read once per interface, each numbering its own records ("record 2" alone sent the reader to the
@@ -296,6 +298,8 @@ class _Reader:
             # EpochRecord); an RTAC record carries its own time.
             chunks = self._data(captured, original, None, interface, body_length - 20, start)
         yield from chunks
+        if interface.linktype in NETWORK_LINKTYPES and self.transport.past(self.record):
+            raise _Ended()  # (the connection read has no record after: sources/ethernet.py Transport.span)
 
     def skipped_warnings(self) -> None:
         """One line per interface whose packets were passed over, with what they held (every byte of the
@@ -507,9 +511,9 @@ class PcapngChunks:
 
 def read_pcapng(inp: Input, log: WarningLog, chunk_size: int, only: int | None = None,
                 tell_skipped: bool = True, where: str = "", ports: RtuPorts = RtuPorts(),
-                connection: tuple[str, str, str] | None = None) -> PcapngChunks:
+                connection: tuple[str, str, str] | None = None, span: Span | None = None) -> PcapngChunks:
     """The chunks of a pcapng's packets (`only`: of that interface alone, by its ordinal; `tell_skipped`:
     warn of the interfaces carrying no serial bytes; `where`: said before a warning that numbers a record;
     `ports`, `connection`: a network interface's RTU ports and the one connection read, sources/ethernet.py)."""
     return PcapngChunks(_Reader(inp, log, chunk_size, only=only, tell_skipped=tell_skipped, where=where,
-                                ports=ports, connection=connection))
+                                ports=ports, connection=connection, span=span))
