@@ -137,6 +137,74 @@ def segment(linktype: int, record: bytes) -> Segment | str:
     return Segment(connection, (sport, dport), name, body[header:declared], max(declared - header, 0), a, seq)
 
 
+MAX_DATAGRAMS = 64  # IPv4 datagrams awaiting fragments at once (the oldest dropped): memory bounded, ~8 MB
+
+
+@dataclass(slots=True)
+class _Datagram:
+    """An IPv4 datagram's fragments so far: its bytes and which 8-byte blocks of them came."""
+
+    header: bytes = b""  # the first fragment's IP header
+    data: bytearray = field(default_factory=bytearray)
+    have: bytearray = field(default_factory=bytearray)  # one byte per 8-byte block: 1 when it came
+    blocks: int = 0  # blocks that came
+    total: int | None = None  # its length, once the last fragment (no more fragments) came
+    count: int = 0  # fragments taken
+
+
+class Fragments:
+    """IPv4 reassembly, as Wireshark's ip.defragment (on by default): a fragmented datagram's transport
+    payload is read in the packet of its last fragment to come, as the plugin is given it. A fragment's cost
+    is its length; at most MAX_DATAGRAMS wait, the oldest given up (counted)."""
+
+    def __init__(self) -> None:
+        self.waiting: dict[tuple[bytes, bytes, int, int], _Datagram] = {}
+        self.given_up = 0  # fragments of datagrams never completed
+
+    def add(self, packet: bytes) -> bytes | None:
+        """The whole IPv4 packet once `packet`, a fragment, completes it; else None."""
+        if len(packet) < 20:
+            self.given_up += 1
+            return None
+        header = (packet[0] & 0x0F) * 4
+        total, ident, flags_offset, protocol = struct.unpack_from("!HHHxB", packet, 2)
+        piece = packet[header:total or len(packet)]
+        start, more = (flags_offset & 0x1FFF) * 8, bool(flags_offset & 0x2000)
+        key = (packet[12:16], packet[16:20], ident, protocol)
+        datagram = self.waiting.pop(key, None) or _Datagram()
+        self.waiting[key] = datagram  # (the most recent last: the first is the oldest)
+        if len(self.waiting) > MAX_DATAGRAMS:
+            self.given_up += self.waiting.pop(next(iter(self.waiting))).count
+        end = min(start + len(piece), 0xFFFF)
+        if start >= end:
+            datagram.count += 1
+            return None
+        if not more:
+            datagram.total = end
+        if start == 0:
+            datagram.header = packet[:header]
+        if len(datagram.data) < end:
+            datagram.data.extend(bytes(end - len(datagram.data)))
+            datagram.have.extend(bytes(-(-end // 8) - len(datagram.have)))
+        datagram.data[start:end] = piece[: end - start]
+        for block in range(start // 8, -(-end // 8)):
+            datagram.blocks += not datagram.have[block]
+            datagram.have[block] = 1
+        datagram.count += 1
+        if datagram.total is None or not datagram.header or datagram.blocks < -(-datagram.total // 8):
+            return None
+        del self.waiting[key]
+        head = datagram.header
+        length = len(head) + datagram.total
+        return head[:2] + struct.pack("!H4x", length) + head[8:] + bytes(datagram.data[: datagram.total])
+
+    def finish(self) -> int:
+        """The fragments of datagrams never completed, all told."""
+        self.given_up += sum(datagram.count for datagram in self.waiting.values())
+        self.waiting.clear()
+        return self.given_up
+
+
 @dataclass(slots=True)
 class Transport:
     """The reading of one capture's network records: which payloads are the bus's (`only`: one connection's,
@@ -155,6 +223,7 @@ class Transport:
     # (a file is read once per connection: 1,600 connections of one poll each took 417 s, cubic).
     spans: dict[Connection, list[int]] = field(default_factory=dict)
     span: Span | None = None
+    fragments: Fragments = field(default_factory=Fragments)
     judged: set[Connection] = field(default_factory=set)  # connections whose first payload was looked at
     sent: dict[tuple[Connection, str], int] = field(default_factory=dict)  # a TCP sender's next sequence number
 
@@ -171,6 +240,11 @@ class Transport:
         (counted)."""
         self.linktype = linktype if self.linktype is None else self.linktype
         found = segment(linktype, record)
+        if found == "fragmented IP":  # (read whole in its last fragment's packet, as Wireshark's IP gives it)
+            packet = self.fragments.add(network_payload(linktype, record))  # type: ignore[arg-type]
+            if packet is None:
+                return None
+            found = segment(LINKTYPE_RAW, packet)
         if isinstance(found, str):
             return self._skip(found)
         port = self.ports.tcp if found.transport == "TCP" else self.ports.udp
@@ -216,12 +290,16 @@ class Transport:
         end = (found.seq + found.declared) & 0xFFFFFFFF
         sender = (found.connection, found.sender)  # (a server's end is every connection's)
         sent = self.sent.get(sender)
-        if sent is not None:
-            ahead = (end - sent) & 0xFFFFFFFF
-            if ahead == 0 or ahead & 0x80000000:
-                return True
-        self.sent[sender] = end
-        return False
+        if sent is None:
+            self.sent[sender] = end
+            return False
+        if not (end - sent) & 0x80000000:  # (the highest seen, as Wireshark's nextseq: retransmissions too)
+            self.sent[sender] = end
+        # Wireshark's TCP (tcp.no_subdissector_on_error, on by default) gives no subdissector a segment that
+        # starts before the highest sequence number seen (a retransmission or one out of order), even when it
+        # brings new bytes after them: an overlapping one was taken whole, its bytes read twice.
+        behind = (sent - found.seq) & 0xFFFFFFFF
+        return 0 < behind < 0x80000000
 
     def _skip(self, why: str) -> None:
         self.skipped[why] = self.skipped.get(why, 0) + 1
@@ -230,6 +308,8 @@ class Transport:
     def finish(self, warn) -> None:  # type: ignore[no-untyped-def]
         """At the end: refuse a capture none of whose packets carried the bus's bytes; else tell the
         packets passed over, in one warning (`warn(kind, message)`)."""
+        if self.fragments.finish():
+            self.skipped["fragmented IP never reassembled"] = self.fragments.given_up
         if not self.taken and self.only is None:
             raise SourceError(self.refusal())
         if self.span is not None:  # (a later connection's bus, read over its span: the first bus tells)

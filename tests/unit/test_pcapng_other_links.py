@@ -80,7 +80,7 @@ def test_no_serial_interface_is_refused(tmp_path: Path, monkeypatch: pytest.Monk
     assert err.splitlines() == [
         f"vw3-decode: {path}: Ethernet (linktype 1): no TCP or UDP payload on the Modbus RTU ports (none given: "
         "--tcp-port and --udp-port, as the plugin's vw3.tcp_port and vw3.udp_port preferences, set them); "
-        "its 1 packet: 1 fragmented IP"]
+        "its 1 packet: 1 fragmented IP never reassembled"]
 
 
 def test_serial_interface_names_the_copy(tmp_path: Path) -> None:

@@ -1,0 +1,77 @@
+"""RTU over TCP/UDP segments as Wireshark's TCP and IP give them to the plugin (sources/ethernet.py): a TCP
+segment starting before the highest sequence number seen is given to no subdissector even when it brings new
+bytes (tcp.no_subdissector_on_error); IPv4 fragments are reassembled (ip.defragment) and the datagram read in
+its last fragment's packet."""
+from __future__ import annotations
+
+import struct
+from pathlib import Path
+
+from helpers import run_cli
+from lua_harness import lua_errors, run_tshark
+from lua_net import CLIENT, SERVER, NetWriter
+from seed_frames import SCENARIO_1, SCENARIO_2, SCENARIO_REQUEST
+
+ATV71 = ["--profile", "atv71"]
+REQUEST = "12 request   Read Holding Registers 8400..8402 (3)"
+ANSWER_1 = ("12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent CHCF=IO (I/O profile) "
+            "COP=Cd (command) [#1, 10.0 ms]  CRC ok")
+ANSWER_2 = ("12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent CHCF=protected COP=Cd (command) "
+            "[#3, 10.0 ms]  CRC ok")
+
+
+def plugin_rows(pcap: Path, *preferences: str) -> list[str]:
+    done = run_tshark(pcap, *preferences, "-o", "vw3.profiles:atv71", "-T", "fields", "-E", "separator=|",
+                      "-e", "frame.number", "-e", "vw3.kind", "-e", "vw3.request_frame")
+    assert done.returncode == 0 and not lua_errors(done.stdout + done.stderr)
+    return done.stdout.splitlines()
+
+
+def test_an_overlapping_segment_is_not_read_again(tmp_path: Path) -> None:
+    # The answer's first 5 bytes, then (its end lost) a segment sent again from byte 3 to the end: Wireshark
+    # flags it a retransmission and the plugin never sees it; its first 2 bytes were read twice, as noise.
+    pcap = tmp_path / "overlap.pcap"
+    writer = NetWriter(pcap)
+    writer.tcp(True, 40001, 4001, SCENARIO_REQUEST, 1.0)
+    start = writer._seq.get((4001, 40001), 1000)
+    writer.tcp(False, 40001, 4001, SCENARIO_1[:5], 1.010)
+    writer._seq[(4001, 40001)] = start + 3
+    writer.tcp(False, 40001, 4001, SCENARIO_1[3:], 1.3)
+    writer.tcp(True, 40001, 4001, SCENARIO_REQUEST, 1.4)
+    writer.tcp(False, 40001, 4001, SCENARIO_2, 1.41)
+    writer.close()
+    assert run_cli(["--tcp-port", "4001", *ATV71, str(pcap)]) == (0, (
+        f"     1     0.000000  {REQUEST} [no response]  CRC ok\n"
+        "     2     0.010000   - noise     5 bytes of noise at offset 8: 0c 03 06 80 00\n"
+        f"     3     0.400000  {REQUEST}  CRC ok\n"
+        f"     4     0.410000  {ANSWER_2}\n"), f"vw3-decode: warning: {pcap}: 1 packet carried no Modbus RTU bytes on "
+        "TCP port 4001: skipped (1 TCP retransmissions)\n")
+    # (the plugin, two passes: the 5 bytes noise in packet 2, packet 3 given no subdissector)
+    assert plugin_rows(pcap, "-o", "vw3.tcp_port:4001") == ["1|1|", "2|4|", "3||", "4|1|", "5|2|4"]
+
+
+def _fragments(writer: NetWriter, to_server: bool, payload: bytes, time: float, ident: int) -> None:
+    """A UDP datagram in two IPv4 fragments (its header and nothing more, then the rest), 0.1 ms apart."""
+    source, destination = (CLIENT, SERVER) if to_server else (SERVER, CLIENT)
+    ports = (40001, 5021) if to_server else (5021, 40001)
+    datagram = struct.pack("!HHHH", *ports, 8 + len(payload), 0) + payload
+    for offset, piece, more, at in ((0, datagram[:8], 1, time), (1, datagram[8:], 0, time + 0.0001)):
+        writer._write(struct.pack("!BBHHHBBH4s4s", 0x45, 0, 20 + len(piece), ident, more << 13 | offset, 64, 17, 0,
+                                  source, destination) + piece, at)
+
+
+def test_ip_fragments_are_reassembled(tmp_path: Path) -> None:
+    # Before: refused, "its 4 packets: 4 fragmented IP"; tshark reassembles them and the plugin reads both frames.
+    pcap = tmp_path / "fragments.pcap"
+    writer = NetWriter(pcap)
+    _fragments(writer, True, SCENARIO_REQUEST, 1.0, 77)
+    _fragments(writer, False, SCENARIO_1, 1.01, 78)
+    for ident, flags_offset, time in ((79, 1 << 13, 1.1), (80, 1, 1.2)):  # (a first and a last, never completed)
+        writer._write(struct.pack("!BBHHHBBH4s4s", 0x45, 0, 28, ident, flags_offset, 64, 17, 0, CLIENT, SERVER)
+                      + bytes(8), time)
+    writer.close()
+    assert run_cli(["--udp-port", "5021", *ATV71, str(pcap)]) == (0, (
+        f"     1     0.000000  {REQUEST}  CRC ok\n     2     0.010000  {ANSWER_1}\n"),
+        f"vw3-decode: warning: {pcap}: 2 packets carried no Modbus RTU bytes on UDP port 5021: skipped (2 fragmented IP "
+        "never reassembled)\n")
+    assert plugin_rows(pcap, "-o", "vw3.udp_port:5021") == ["1||", "2|1|", "3||", "4|2|2", "5||", "6||"]
