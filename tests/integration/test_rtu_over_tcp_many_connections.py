@@ -32,3 +32,18 @@ def test_each_connection_bus_parses_its_own_records_alone(tmp_path: Path, monkey
     # The scan for the connections and the first bus read the 80 records; each later bus its own 2 (before:
     # 80 records a bus, 3,280 in all).
     assert len(parsed) == 80 + 80 + 39 * 2
+
+
+def test_each_connection_has_devices_of_its_own(tmp_path: Path) -> None:
+    # Two connections, one poll each: the second's bus started with the first's devices (profile auto had seen
+    # the first's poll and named the second's registers: CHCF=IO), as a pcapng's interfaces did not.
+    pcap = tmp_path / "two.pcap"
+    writer = NetWriter(pcap)
+    for index in range(2):
+        writer.tcp(True, 40001 + index, 4001, SCENARIO_REQUEST, 1.0 + index / 10)
+        writer.tcp(False, 40001 + index, 4001, SCENARIO_1, 1.01 + index / 10)
+    writer.close()
+    answer = "12 response  Read Holding Registers 8400..8402 (3): 8400=32768 8401=3 8402=2 [#1, 10.0 ms]  CRC ok"
+    assert run_cli(["--tcp-port", "4001", str(pcap)]) == (0, "".join(
+        f"==> {pcap}: TCP 10.0.0.1:{40001 + index} - 10.0.0.2:4001 <==\n"
+        f"     1     0.000000  {REQUEST}\n     2     0.010000  {answer}\n" for index in range(2)), "")
