@@ -90,6 +90,16 @@ class WarningLog:
         self._counts.clear()
 
 
+class Where(WarningLog):
+    """A log's warnings with where they are said first (`file: if_name: record 2`, `file: TCP a - b: record 2: ...`), counted as its own."""
+
+    def __init__(self, log: WarningLog, where: str) -> None:  # (no state of its own: `log` keeps it)
+        self._log, self._where = log, where
+
+    def warn(self, kind: str, message: str) -> None:
+        self._log.warn(kind, f"{self._where}{message}")
+
+
 class Input:
     """A forward-only byte stream with a known position; works the same on files and pipes.
 

@@ -164,7 +164,7 @@ def open_interface(  # type: ignore[no-untyped-def]
     try:
         log = WarningLog()
         if connection is not None:
-            chunks = _network_chunks(stream, path, log, chunk_size, ports, connection, span)
+            chunks = _network_chunks(stream, path, log, chunk_size, ports, connection, span, where)
             form = "pcap" if isinstance(chunks, PcapRecords) else "pcapng"
         else:
             chunks = read_pcapng(Input(stream, path), log, chunk_size, only=ordinal, tell_skipped=tell_skipped,
@@ -182,12 +182,13 @@ def open_interface(  # type: ignore[no-untyped-def]
 
 
 def _network_chunks(stream, path: str, log: WarningLog, chunk_size: int, ports: RtuPorts,  # type: ignore[no-untyped-def]
-                    connection: Connection | None, span: Span | None = None):
+                    connection: Connection | None, span: Span | None = None, where: str = ""):
     """The chunks of a pcap or pcapng read for its network link's RTU payloads (`connection`: one's alone);
     their `transport` (sources/ethernet.py): a pcap's from its header, a pcapng's once a network packet is read;
     None for a serial capture."""
     head = stream.read(4)
     stream.seek(0)
     if is_pcap(head):
-        return read_pcap(Input(stream, path), log, chunk_size, ports, connection, span)
-    return read_pcapng(Input(stream, path), log, chunk_size, ports=ports, connection=connection, span=span)
+        return read_pcap(Input(stream, path), log, chunk_size, ports, connection, span, where)
+    return read_pcapng(Input(stream, path), log, chunk_size, ports=ports, connection=connection, span=span,
+                       where=where)

@@ -15,6 +15,7 @@ from dataclasses import replace
 from dissector.model import Chunk, Stamp
 from dissector.sources.ethernet import NETWORK_LINKTYPES, RtuPorts, Span, Transport
 from dissector.sources.common import (
+    Where,
     LINKTYPE_RTAC_SERIAL,
     Input,
     SourceError,
@@ -50,10 +51,10 @@ def is_pcap(head: bytes) -> bool:
 
 
 def read_pcap(inp: Input, log: WarningLog, chunk_size: int, ports: RtuPorts = RtuPorts(),
-              only: tuple[str, str, str] | None = None, span: Span | None = None) -> PcapRecords:
+              only: tuple[str, str, str] | None = None, span: Span | None = None, where: str = "") -> PcapRecords:
     """`ports`: a network link's RTU ports; `only`: the one connection read, over its `span` of the file's
-    records when given (sources/ethernet.py)."""
-    return PcapRecords(inp, log, chunk_size, ports, only, span)
+    records when given (sources/ethernet.py), `where` said before its payloads' warnings (its bus's title)."""
+    return PcapRecords(inp, log, chunk_size, ports, only, span, where)
 
 
 class PcapRecords:
@@ -62,8 +63,9 @@ class PcapRecords:
     was last recording (Dissector's `recorded`; the bulk reader sets it for the records it reads)."""
 
     def __init__(self, inp: Input, log: WarningLog, chunk_size: int, ports: RtuPorts = RtuPorts(),
-                 only: tuple[str, str, str] | None = None, span: Span | None = None) -> None:
+                 only: tuple[str, str, str] | None = None, span: Span | None = None, where: str = "") -> None:
         self.ports, self.only, self.span = ports, only, span
+        self.payload_log = Where(log, where) if where else log  # (a connection's record warnings: its bus named)
         self.transport: Transport | None = None  # a network link's (RTU over TCP/UDP)
         self.inp = inp
         self.log = log
@@ -190,8 +192,8 @@ class PcapRecords:
                 )
             time = None if corrupt else Stamp.from_parts(seconds, fraction, self.units)
             if self.transport is not None:  # (a network link: the RTU ports' payloads alone, as records)
-                for chunk in record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size,
-                                           original=original, transport=self.transport):
+                for chunk in record_chunks(inp, captured, time, self.linktype, self.record, self.payload_log,
+                                           self.chunk_size, original=original, transport=self.transport):
                     self.recorded_until = time if time is not None else self.recorded_until
                     yield chunk
                 if self.transport.past(self.record):  # (the connection read has no record after)

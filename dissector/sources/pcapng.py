@@ -20,6 +20,7 @@ from dataclasses import dataclass, replace
 
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import (
+    Where,
     LINKTYPE_NAMES,
     LINKTYPE_RTAC_SERIAL,
     LINKTYPE_USER0,
@@ -110,7 +111,7 @@ class _Reader:
         # The warnings that number a record: `where` (the bus's title, `file: if_name`) first when the file is
         # read once per interface, each numbering its own records ("record 2" alone sent the reader to the
         # first bus's, or to tshark's frame 2).
-        self.record_log = _Where(log, where) if where else log
+        self.record_log = Where(log, where) if where else log
         self.only = only
         self.tell_skipped = tell_skipped  # count the packets of interfaces not read (one bus of several says)
         self.described = 0  # interfaces described so far in the file, all sections
@@ -413,16 +414,6 @@ class _Reader:
 def serial(linktype: int) -> bool:
     """Does an interface of this link type carry serial bytes vw3-decode reads (common.check_linktype)?"""
     return linktype in (LINKTYPE_USER0, LINKTYPE_RTAC_SERIAL)
-
-
-class _Where(WarningLog):
-    """A log's warnings with where they are said first (`file: if_name: record 2: ...`), counted as its own."""
-
-    def __init__(self, log: WarningLog, where: str) -> None:  # (no state of its own: `log` keeps it)
-        self._log, self._where = log, where
-
-    def warn(self, kind: str, message: str) -> None:
-        self._log.warn(kind, f"{self._where}{message}")
 
 
 class _Ended(Exception):

@@ -47,3 +47,25 @@ def test_each_connection_has_devices_of_its_own(tmp_path: Path) -> None:
     assert run_cli(["--tcp-port", "4001", str(pcap)]) == (0, "".join(
         f"==> {pcap}: TCP 10.0.0.1:{40001 + index} - 10.0.0.2:4001 <==\n"
         f"     1     0.000000  {REQUEST}\n     2     0.010000  {answer}\n" for index in range(2)), "")
+
+
+def test_a_connection_warning_names_its_bus(tmp_path: Path) -> None:
+    # The second connection's answer captured in part (its IPv4 length 4 bytes more than its packet holds): the
+    # warning numbered the record without saying whose bus it was in, as a pcapng interface's warning says.
+    import struct
+    import subprocess
+
+    pcap = tmp_path / "part.pcap"
+    writer = NetWriter(pcap)
+    writer.tcp(True, 40001, 4001, SCENARIO_REQUEST, 1.0)
+    writer.tcp(True, 40002, 4001, SCENARIO_REQUEST, 1.001)
+    writer.tcp(False, 40001, 4001, SCENARIO_1, 1.01)
+    whole = writer._ip
+    writer._ip = lambda *parts: (lambda ip: ip[:2] + struct.pack("!H", len(ip) + 4) + ip[4:])(whole(*parts))
+    writer.tcp(False, 40002, 4001, SCENARIO_1, 1.011)
+    writer.close()
+    subprocess.run(["editcap", "-F", "pcapng", str(pcap), str(tmp_path / "part.pcapng")], check=True)
+    for path in (pcap, tmp_path / "part.pcapng"):
+        assert run_cli(["--tcp-port", "4001", str(path)])[2] == (
+            f"vw3-decode: warning: {path}: TCP 10.0.0.1:40002 - 10.0.0.2:4001: record 4: only 11 of its 15 payload "
+            "bytes were captured\n")
