@@ -168,7 +168,7 @@ def open_interface(  # type: ignore[no-untyped-def]
             form = "pcap" if isinstance(chunks, PcapRecords) else "pcapng"
         else:
             chunks = read_pcapng(Input(stream, path), log, chunk_size, only=ordinal, tell_skipped=tell_skipped,
-                                 where=where)
+                                 where=where, ports=ports)
             form = "pcapng"
         head: list = []
         if mode is None:  # as reader.py decides it: the first payload bytes, replayed first

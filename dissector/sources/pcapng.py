@@ -305,12 +305,16 @@ class _Reader:
     def skipped_warnings(self) -> None:
         """One line per interface whose packets were passed over, with what they held (every byte of the
         input accounted for)."""
+        ports = self.transport.ports
         for ordinal, (linktype, records, length) in sorted(self.skipped.items()):
             label = LINKTYPE_NAMES.get(linktype, "not a serial line")
+            # (--tcp-port/--udp-port given: say they were not read there, rather than do nothing unsaid)
+            unread = (f"; its {ports.text()} not read: --tcp-port and --udp-port read a network capture without a "
+                      "serial interface" if linktype in NETWORK_LINKTYPES and ports != RtuPorts() else "")
             self.log.warn(
                 "skipped interfaces",
                 f"interface {ordinal}: linktype {linktype} ({label}) carries no serial bytes: "
-                f"{records} record{'s' if records != 1 else ''} ({length} bytes) skipped",
+                f"{records} record{'s' if records != 1 else ''} ({length} bytes) skipped{unread}",
             )
 
     def _recorded(self, interface: Interface, stamp: int) -> None:
