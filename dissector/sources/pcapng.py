@@ -166,6 +166,10 @@ class _Reader:
                 self.described += 1
                 if self.first_interface and serial(self.interfaces[-1].linktype):
                     return
+            elif block_type in (EPB, OPB, SPB) and self._passed_over():
+                if inp.skip(body_length) < body_length:
+                    self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
+                    return
             elif block_type in (EPB, OPB):
                 yield from self._packet(block_type, body_length, start)
             elif block_type == SPB:
@@ -181,6 +185,17 @@ class _Reader:
                     return
             if not self._trailer(total, start):
                 return
+
+    def _passed_over(self) -> bool:
+        """A packet not read at all: the interfaces alone are sought (first_interface), or it comes before the
+        span of the one connection read (each packet of a network capture is numbered: sources/ethernet.py)."""
+        if self.first_interface:
+            return True
+        if self.transport.outside(self.record + 1) and self.transport.span is not None:
+            if self.record + 1 < self.transport.span[0]:
+                self.record += 1
+                return True
+        return False
 
     # -- blocks ------------------------------------------------------------------------------
     def _section(self, head: bytes, start: int) -> bool:
