@@ -60,6 +60,7 @@ class Segment:
     declared: int
     sender: str = ""  # its source end
     seq: int | None = None  # TCP's sequence number
+    syn: bool = False  # a TCP SYN: a connection (re)starts, its sequence numbers anew
 
 
 def _address(raw: bytes) -> str:
@@ -125,16 +126,17 @@ def segment(linktype: int, record: bytes) -> Segment | str:
     protocol, source, destination, body, declared = ip
     seq = None
     if protocol == TCP and len(body) >= 20:
-        sport, dport, seq, offset = struct.unpack_from("!HHI4xB", body)
+        sport, dport, seq, offset, flags = struct.unpack_from("!HHI4xBB", body)
         header, name = (offset >> 4) * 4, "TCP"
     elif protocol == UDP and len(body) >= 8:
         sport, dport, length = struct.unpack_from("!HHH", body)
-        header, name, declared = 8, "UDP", length
+        header, name, declared, flags = 8, "UDP", length, 0
     else:
         return "not TCP or UDP"
     a, b = f"{_address(source)}:{sport}", f"{_address(destination)}:{dport}"
     connection = (name, *sorted((a, b)))
-    return Segment(connection, (sport, dport), name, body[header:declared], max(declared - header, 0), a, seq)
+    return Segment(connection, (sport, dport), name, body[header:declared], max(declared - header, 0), a, seq,
+                   bool(flags & 0x02))
 
 
 MAX_DATAGRAMS = 64  # IPv4 datagrams awaiting fragments at once (the oldest dropped): memory bounded, ~8 MB
@@ -261,6 +263,9 @@ class Transport:
             span[1] = number
         if self.only is not None and found.connection != self.only:
             return self._skip("other connections")
+        if found.syn:  # (its ports used again, its sequence numbers new: Wireshark's "port numbers reused")
+            for end in found.connection[1:]:
+                self.sent.pop((found.connection, end), None)
         if not found.declared:
             return self._skip(f"{found.transport} without payload")
         if found.seq is not None and self._again(found):

@@ -75,3 +75,33 @@ def test_ip_fragments_are_reassembled(tmp_path: Path) -> None:
         f"vw3-decode: warning: {pcap}: 2 packets carried no Modbus RTU bytes on UDP port 5021: skipped (2 fragmented IP "
         "never reassembled)\n")
     assert plugin_rows(pcap, "-o", "vw3.udp_port:5021") == ["1||", "2|1|", "3||", "4|2|2", "5||", "6||"]
+
+
+def test_a_connection_on_ports_used_again_is_read(tmp_path: Path) -> None:
+    # A poll, FIN both ways, then the same ports connect again (a master binding a fixed port) with lower initial
+    # sequence numbers: Wireshark says "TCP Port numbers reused" and the plugin reads the second poll; vw3-decode
+    # took its two segments for retransmissions of the first connection's and dropped them.
+    pcap = tmp_path / "reused.pcap"
+    writer = NetWriter(pcap)
+
+    def segment(to_server: bool, seq: int, ack: int, flags: int, payload: bytes, time: float) -> None:
+        ends, ports = ((CLIENT, SERVER), (40001, 4001)) if to_server else ((SERVER, CLIENT), (4001, 40001))
+        tcp = struct.pack("!HHIIBBHHH", *ports, seq, ack, 5 << 4, flags, 8192, 0, 0)
+        writer._write(writer._ip(6, *ends, tcp + payload), time)
+
+    for base, time in ((1000, 1.0), (500, 2.0)):  # (SYN, SYN-ACK, the poll; FIN both ways after the first)
+        segment(True, base - 1, 0, 0x02, b"", time - 0.01)
+        segment(False, 5 * base - 1, base, 0x12, b"", time - 0.009)
+        segment(True, base, 5 * base, 0x18, SCENARIO_REQUEST, time)
+        segment(False, 5 * base, base + 8, 0x18, SCENARIO_1, time + 0.01)
+        if base == 1000:
+            segment(True, base + 8, 5 * base + 11, 0x11, b"", time + 0.02)
+            segment(False, 5 * base + 11, base + 9, 0x11, b"", time + 0.021)
+    writer.close()
+    assert run_cli(["--tcp-port", "4001", *ATV71, str(pcap)]) == (0, (
+        f"     1     0.000000  {REQUEST}  CRC ok\n     2     0.010000  {ANSWER_1}\n"
+        f"     3     1.000000  {REQUEST}  CRC ok\n     4     1.010000  {ANSWER_1.replace('#1', '#3')}\n"),
+        f"vw3-decode: warning: {pcap}: 6 packets carried no Modbus RTU bytes on TCP port 4001: skipped (6 TCP "
+        "without payload)\n")
+    assert [row for row in plugin_rows(pcap, "-o", "vw3.tcp_port:4001") if row.split("|")[1]] == [
+        "3|1|", "4|2|3", "9|1|", "10|2|9"]
