@@ -186,9 +186,14 @@ def _network_chunks(stream, path: str, log: WarningLog, chunk_size: int, ports: 
     """The chunks of a pcap or pcapng read for its network link's RTU payloads (`connection`: one's alone);
     their `transport` (sources/ethernet.py): a pcap's from its header, a pcapng's once a network packet is read;
     None for a serial capture."""
-    head = stream.read(4)
+    from dissector.sources.compressed import HEADER_BYTES, Decompressed, compression
+
+    kind = compression(stream.read(HEADER_BYTES), path)
     stream.seek(0)
+    if kind is not None:  # (a .pcap.gz: read decompressed, as reader.py reads it; before, one stream of all)
+        stream = Decompressed(kind, b"", stream, path, log)
+    head = stream.read(4)
+    inp = Input(stream, path, prefix=head)
     if is_pcap(head):
-        return read_pcap(Input(stream, path), log, chunk_size, ports, connection, span, where)
-    return read_pcapng(Input(stream, path), log, chunk_size, ports=ports, connection=connection, span=span,
-                       where=where)
+        return read_pcap(inp, log, chunk_size, ports, connection, span, where)
+    return read_pcapng(inp, log, chunk_size, ports=ports, connection=connection, span=span, where=where)

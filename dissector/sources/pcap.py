@@ -77,7 +77,8 @@ class PcapRecords:
         self.extra = 0  # record header bytes after the standard 16 (modified pcap)
         self.recorded_until: Stamp | None = None
         self._header()  # (at once: its time units set the time column's decimals before any record)
-        if self.transport is not None and span is not None and rereadable(inp):  # (its first record's header)
+        seekable = getattr(inp.stream, "seekable", None)  # (not a compressed file's: passed over unread)
+        if self.transport is not None and span is not None and seekable and seekable():  # (its first record)
             inp.seek(span[2] - RECORD_HEADER_SIZE - self.extra)
             self.record = span[0] - 1
         self._chunks = self.records(inp)

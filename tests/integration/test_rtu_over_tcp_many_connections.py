@@ -94,3 +94,21 @@ def test_a_pcapng_of_many_connections_reads_each_bus_over_its_span(tmp_path: Pat
         f"==> {tmp_path / 'polls.pcapng'}: TCP 10.0.0.1:{40000 + index} - 10.0.0.2:4001 <==\n"
         f"     1     0.000000  {REQUEST}\n     2     0.010000  {answer}\n" for index in range(40)), "")
     assert len(packets) < 3 * 80 + 40 * 6  # (the scan, the first bus, a later bus's 2 packets read 3 times)
+
+
+def test_a_compressed_capture_of_two_connections_is_two_buses(tmp_path: Path) -> None:
+    # capture.pcap.gz (tshark reads it as the pcap): its connections were one stream, with the warning meant for
+    # standard input ('save standard input to a file'), though it is a file.
+    import gzip
+
+    pcap = tmp_path / "two.pcap"
+    writer = NetWriter(pcap)
+    for index in range(2):
+        writer.tcp(True, 40001 + index, 4001, SCENARIO_REQUEST, 1.0 + index / 10)
+        writer.tcp(False, 40001 + index, 4001, SCENARIO_1, 1.01 + index / 10)
+    writer.close()
+    packed = tmp_path / "two.pcap.gz"
+    packed.write_bytes(gzip.compress(pcap.read_bytes()))
+    assert run_cli(["--tcp-port", "4001", *["--profile", "atv71"], str(packed)]) == (0, "".join(
+        f"==> {packed}: TCP 10.0.0.1:{40001 + index} - 10.0.0.2:4001 <==\n"
+        f"     1     0.000000  {REQUEST}\n     2     0.010000  {ANSWER}\n" for index in range(2)), "")
