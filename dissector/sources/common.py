@@ -324,7 +324,7 @@ def _payload_chunks(inp: Input, length: int, time: Stamp | None, linktype: int, 
         log.warn("truncated input", f"record {record} is cut short: {len(data)} of {length} bytes "
                  "(the capture ends inside it); the bytes that are there are decoded")
     known = len(transport.connections)
-    found = transport.take(linktype, data, record, offset)
+    found = transport.take(linktype, data, record, offset, time.ns if time is not None else None)
     if known == 1 and len(transport.connections) == 2 and transport.only is None:
         # (a file is read once per connection, each its own bus: sources/interfaces.py; a pipe cannot be)
         log.warn("connections", "packets come from several connections on the RTU ports; their bytes are decoded "

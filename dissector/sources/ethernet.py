@@ -61,6 +61,9 @@ class Segment:
     sender: str = ""  # its source end
     seq: int | None = None  # TCP's sequence number
     syn: bool = False  # a TCP SYN: a connection (re)starts, its sequence numbers anew
+    ack: int = 0  # TCP's acknowledgment number, window and flags (duplicate ACKs: Transport._acks)
+    window: int = 0
+    flags: int = 0
 
 
 def _address(raw: bytes) -> str:
@@ -126,17 +129,17 @@ def segment(linktype: int, record: bytes) -> Segment | str:
     protocol, source, destination, body, declared = ip
     seq = None
     if protocol == TCP and len(body) >= 20:
-        sport, dport, seq, offset, flags = struct.unpack_from("!HHI4xBB", body)
+        sport, dport, seq, ack, offset, flags, window = struct.unpack_from("!HHIIBBH", body)
         header, name = (offset >> 4) * 4, "TCP"
     elif protocol == UDP and len(body) >= 8:
         sport, dport, length = struct.unpack_from("!HHH", body)
-        header, name, declared, flags = 8, "UDP", length, 0
+        header, name, declared, flags, ack, window = 8, "UDP", length, 0, 0, 0
     else:
         return "not TCP or UDP"
     a, b = f"{_address(source)}:{sport}", f"{_address(destination)}:{dport}"
     connection = (name, *sorted((a, b)))
     return Segment(connection, (sport, dport), name, body[header:declared], max(declared - header, 0), a, seq,
-                   bool(flags & 0x02))
+                   bool(flags & 0x02), ack, window, flags)
 
 
 MAX_DATAGRAMS = 64  # IPv4 datagrams awaiting fragments at once (the oldest dropped): memory bounded, ~8 MB
@@ -228,6 +231,9 @@ class Transport:
     fragments: Fragments = field(default_factory=Fragments)
     judged: set[Connection] = field(default_factory=set)  # connections whose first payload was looked at
     sent: dict[tuple[Connection, str], int] = field(default_factory=dict)  # a TCP sender's next sequence number
+    # A TCP sender's acknowledgments, as Wireshark's analysis keeps them: [last ack, its time (ns), duplicate
+    # ACKs since, window, next sequence number of any segment]
+    acks: dict[tuple[Connection, str], list] = field(default_factory=dict)
 
     def outside(self, number: int) -> bool:
         """Record `number` is outside the span of the one connection read: not the bus's, unparsed."""
@@ -237,7 +243,8 @@ class Transport:
         """Record `number` is the last of the one connection read, or after it: the reading can end."""
         return self.span is not None and number >= self.span[1]
 
-    def take(self, linktype: int, record: bytes, number: int, offset: int = 0) -> Segment | None:
+    def take(self, linktype: int, record: bytes, number: int, offset: int = 0, now: int | None = None
+             ) -> Segment | None:
         """The payload of record `number` (its data at `offset` in the file) when it is the bus's; else None
         (counted)."""
         self.linktype = linktype if self.linktype is None else self.linktype
@@ -266,9 +273,12 @@ class Transport:
         if found.syn:  # (its ports used again, its sequence numbers new: Wireshark's "port numbers reused")
             for end in found.connection[1:]:
                 self.sent.pop((found.connection, end), None)
+                self.acks.pop((found.connection, end), None)
+        if found.seq is not None:
+            self._acks(found, now)
         if not found.declared:
             return self._skip(f"{found.transport} without payload")
-        if found.seq is not None and self._again(found):
+        if found.seq is not None and self._again(found, now):
             return self._skip("TCP retransmissions")
         if found.connection not in self.judged:  # (its first payload)
             self.judged.add(found.connection)
@@ -289,7 +299,29 @@ class Transport:
             f"transaction {int.from_bytes(data[:2], 'big')}, unit {data[6]}, no CRC), not Modbus RTU frames, "
             "which vw3-decode does not read: tshark with lua/vw3.lua and lua/vw3_modbus.lua names its registers")
 
-    def _again(self, found: Segment) -> bool:
+    def _acks(self, found: Segment, now: int | None) -> None:
+        """Count the sender's duplicate ACKs as Wireshark does (no payload, its window, sequence number and
+        acknowledgment the same as before, no SYN, FIN or RST): two of them make the other end's resend of that
+        byte a fast retransmission, which Wireshark's TCP does give its subdissector."""
+        state = self.acks.setdefault((found.connection, found.sender), [None, None, 0, None, None])
+        duplicate = (not found.declared and found.window and found.window == state[3] and found.seq == state[4]
+                     and found.ack == state[0] and not found.flags & 0x07)
+        state[2] = state[2] + 1 if duplicate else 0
+        if found.ack != state[0]:
+            state[0], state[1] = found.ack, now
+        state[3] = found.window
+        end = (found.seq + found.declared + (found.flags & 0x03 != 0)) & 0xFFFFFFFF  # (SYN and FIN count one)
+        if state[4] is None or not (end - state[4]) & 0x80000000:
+            state[4] = end
+
+    def _fast(self, found: Segment, now: int | None) -> bool:
+        """A resend after two duplicate ACKs of its first byte within 20 ms (Wireshark's fast retransmission)."""
+        other = found.connection[2] if found.sender == found.connection[1] else found.connection[1]
+        state = self.acks.get((found.connection, other))
+        return (state is not None and state[2] >= 2 and state[0] == found.seq and now is not None
+                and state[1] is not None and now - state[1] < 20_000_000)
+
+    def _again(self, found: Segment, now: int | None = None) -> bool:
         """A TCP segment whose bytes all came before (a retransmission): Wireshark's TCP gives it no
         subdissector, so the plugin never sees it. Sequence numbers compared modulo 2**32."""
         end = (found.seq + found.declared) & 0xFFFFFFFF
@@ -304,7 +336,7 @@ class Transport:
         # starts before the highest sequence number seen (a retransmission or one out of order), even when it
         # brings new bytes after them: an overlapping one was taken whole, its bytes read twice.
         behind = (sent - found.seq) & 0xFFFFFFFF
-        return 0 < behind < 0x80000000
+        return 0 < behind < 0x80000000 and not self._fast(found, now)
 
     def _skip(self, why: str) -> None:
         self.skipped[why] = self.skipped.get(why, 0) + 1

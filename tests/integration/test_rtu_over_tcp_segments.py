@@ -105,3 +105,31 @@ def test_a_connection_on_ports_used_again_is_read(tmp_path: Path) -> None:
         "without payload)\n")
     assert [row for row in plugin_rows(pcap, "-o", "vw3.tcp_port:4001") if row.split("|")[1]] == [
         "3|1|", "4|2|3", "9|1|", "10|2|9"]
+
+
+def test_a_fast_retransmission_is_read_as_the_plugin_reads_it(tmp_path: Path) -> None:
+    # Two polls, three ACKs of the first's byte (two duplicates), the first poll sent again 1 ms later: Wireshark's
+    # TCP flags it a fast retransmission and gives it to the plugin, which pairs the answer with it (7 ms);
+    # vw3-decode dropped it as a retransmission and paired the answer with the second poll (9 ms).
+    pcap = tmp_path / "fast.pcap"
+    writer = NetWriter(pcap)
+
+    def segment(to_server: bool, seq: int, ack: int, flags: int, payload: bytes, time: float) -> None:
+        ends, ports = ((CLIENT, SERVER), (40001, 4001)) if to_server else ((SERVER, CLIENT), (4001, 40001))
+        tcp = struct.pack("!HHIIBBHHH", *ports, seq, ack, 5 << 4, flags, 8192, 0, 0)
+        writer._write(writer._ip(6, *ends, tcp + payload), time)
+
+    segment(True, 1000, 5000, 0x18, SCENARIO_REQUEST, 1.0)
+    segment(True, 1008, 5000, 0x18, SCENARIO_REQUEST, 1.001)
+    for index in range(3):
+        segment(False, 5000, 1000, 0x10, b"", 1.002 + index / 10000)
+    segment(True, 1000, 5000, 0x18, SCENARIO_REQUEST, 1.003)
+    segment(False, 5000, 1016, 0x18, SCENARIO_1, 1.01)
+    writer.close()
+    assert run_cli(["--tcp-port", "4001", *ATV71, str(pcap)]) == (0, (
+        f"     1     0.000000  {REQUEST} [no response]  CRC ok\n     2     0.001000  {REQUEST} [no response]  CRC ok\n"
+        f"     3     0.003000  {REQUEST}  CRC ok\n     4     0.010000  {ANSWER_1.replace('#1, 10.0', '#3, 7.0')}\n"),
+        f"vw3-decode: warning: {pcap}: 3 packets carried no Modbus RTU bytes on TCP port 4001: skipped (3 TCP "
+        "without payload)\n")
+    assert [row for row in plugin_rows(pcap, "-o", "vw3.tcp_port:4001") if row.split("|")[1]] == [
+        "1|1|", "2|1|", "6|1|", "7|2|6"]
