@@ -400,8 +400,10 @@ def _decode_inputs(
     args: DecodeOptions, env: Environment, sinks: Sinks, annotate: Annotator | None
 ) -> None:
     devices: dict[object, Annotator | None] = {}  # per bus (pcapng interface) its annotator
-    # The devices as they are before any frame, for the other interfaces of a pcapng (~13 ms a copy).
-    pristine = copy.deepcopy(annotate) if annotate is not None and any(map(is_pcapng_file, args.files)) else None
+    # The devices as they are before any frame, for a pcapng's other interfaces and a network capture's other
+    # connections (~13 ms a copy; a pcap's second connection took up the first's evidence for profile auto).
+    several = args.tcp_port or args.udp_port or any(map(is_pcapng_file, args.files))
+    pristine = copy.deepcopy(annotate) if annotate is not None and several else None
     chosen_over_all = choose_over_all(args, env, annotate)
     try:
         for (title, chunks, mode, take_warnings, recorded, timed, fix, (path, source_format),

@@ -90,6 +90,16 @@ class WarningLog:
         self._counts.clear()
 
 
+class Where(WarningLog):
+    """A log's warnings with where they are said first (`file: if_name: record 2`, `file: TCP a - b: record 2: ...`), counted as its own."""
+
+    def __init__(self, log: WarningLog, where: str) -> None:  # (no state of its own: `log` keeps it)
+        self._log, self._where = log, where
+
+    def warn(self, kind: str, message: str) -> None:
+        self._log.warn(kind, f"{self._where}{message}")
+
+
 class Input:
     """A forward-only byte stream with a known position; works the same on files and pipes.
 
@@ -140,6 +150,12 @@ class Input:
                 raise SourceError(f"{self.name}: read error: {error.strerror or error}") from None
         self.position += len(part)
         return part
+
+    def seek(self, position: int) -> None:
+        """Go to byte `position` of a file read from its start (rereadable), what was given back forgotten."""
+        self._prefix = b""
+        self.stream.seek(position)
+        self.position = position
 
     def skip(self, count: int, piece: int = 65536) -> int:
         """Discard `count` bytes without holding them; returns how many there were."""
@@ -299,12 +315,16 @@ def _payload_chunks(inp: Input, length: int, time: Stamp | None, linktype: int, 
                     transport: Transport) -> Iterator[Chunk]:
     """The bus's bytes of a network record (record_chunks): its payload on the RTU ports, one chunk; a
     payload captured in part a PartChunk (the stream's cut: the bytes after it were lost)."""
+    if transport.outside(record):
+        inp.skip(length)
+        return
+    offset = inp.position
     data = inp.read(length)
     if len(data) < length:
         log.warn("truncated input", f"record {record} is cut short: {len(data)} of {length} bytes "
                  "(the capture ends inside it); the bytes that are there are decoded")
     known = len(transport.connections)
-    found = transport.take(linktype, data, record)
+    found = transport.take(linktype, data, record, offset, time.ns if time is not None else None)
     if known == 1 and len(transport.connections) == 2 and transport.only is None:
         # (a file is read once per connection, each its own bus: sources/interfaces.py; a pipe cannot be)
         log.warn("connections", "packets come from several connections on the RTU ports; their bytes are decoded "

@@ -45,6 +45,7 @@ class RtuPorts:
 
 
 Connection = tuple[str, str, str]  # (transport, one end, the other end): the same both ways
+Span = tuple[int, int, int]  # a connection's first and last record numbers, the file offset of its first's data
 
 
 @dataclass(slots=True)
@@ -59,6 +60,10 @@ class Segment:
     declared: int
     sender: str = ""  # its source end
     seq: int | None = None  # TCP's sequence number
+    syn: bool = False  # a TCP SYN: a connection (re)starts, its sequence numbers anew
+    ack: int = 0  # TCP's acknowledgment number, window and flags (duplicate ACKs: Transport._acks)
+    window: int = 0
+    flags: int = 0
 
 
 def _address(raw: bytes) -> str:
@@ -124,16 +129,85 @@ def segment(linktype: int, record: bytes) -> Segment | str:
     protocol, source, destination, body, declared = ip
     seq = None
     if protocol == TCP and len(body) >= 20:
-        sport, dport, seq, offset = struct.unpack_from("!HHI4xB", body)
+        sport, dport, seq, ack, offset, flags, window = struct.unpack_from("!HHIIBBH", body)
         header, name = (offset >> 4) * 4, "TCP"
     elif protocol == UDP and len(body) >= 8:
         sport, dport, length = struct.unpack_from("!HHH", body)
-        header, name, declared = 8, "UDP", length
+        header, name, declared, flags, ack, window = 8, "UDP", length, 0, 0, 0
     else:
         return "not TCP or UDP"
     a, b = f"{_address(source)}:{sport}", f"{_address(destination)}:{dport}"
     connection = (name, *sorted((a, b)))
-    return Segment(connection, (sport, dport), name, body[header:declared], max(declared - header, 0), a, seq)
+    return Segment(connection, (sport, dport), name, body[header:declared], max(declared - header, 0), a, seq,
+                   bool(flags & 0x02), ack, window, flags)
+
+
+MAX_DATAGRAMS = 64  # IPv4 datagrams awaiting fragments at once (the oldest dropped): memory bounded, ~8 MB
+
+
+@dataclass(slots=True)
+class _Datagram:
+    """An IPv4 datagram's fragments so far: its bytes and which 8-byte blocks of them came."""
+
+    header: bytes = b""  # the first fragment's IP header
+    data: bytearray = field(default_factory=bytearray)
+    have: bytearray = field(default_factory=bytearray)  # one byte per 8-byte block: 1 when it came
+    blocks: int = 0  # blocks that came
+    total: int | None = None  # its length, once the last fragment (no more fragments) came
+    count: int = 0  # fragments taken
+
+
+class Fragments:
+    """IPv4 reassembly, as Wireshark's ip.defragment (on by default): a fragmented datagram's transport
+    payload is read in the packet of its last fragment to come, as the plugin is given it. A fragment's cost
+    is its length; at most MAX_DATAGRAMS wait, the oldest given up (counted)."""
+
+    def __init__(self) -> None:
+        self.waiting: dict[tuple[bytes, bytes, int, int], _Datagram] = {}
+        self.given_up = 0  # fragments of datagrams never completed
+
+    def add(self, packet: bytes) -> bytes | None:
+        """The whole IPv4 packet once `packet`, a fragment, completes it; else None."""
+        if len(packet) < 20:
+            self.given_up += 1
+            return None
+        header = (packet[0] & 0x0F) * 4
+        total, ident, flags_offset, protocol = struct.unpack_from("!HHHxB", packet, 2)
+        piece = packet[header:total or len(packet)]
+        start, more = (flags_offset & 0x1FFF) * 8, bool(flags_offset & 0x2000)
+        key = (packet[12:16], packet[16:20], ident, protocol)
+        datagram = self.waiting.pop(key, None) or _Datagram()
+        self.waiting[key] = datagram  # (the most recent last: the first is the oldest)
+        if len(self.waiting) > MAX_DATAGRAMS:
+            self.given_up += self.waiting.pop(next(iter(self.waiting))).count
+        end = min(start + len(piece), 0xFFFF)
+        if start >= end:
+            datagram.count += 1
+            return None
+        if not more:
+            datagram.total = end
+        if start == 0:
+            datagram.header = packet[:header]
+        if len(datagram.data) < end:
+            datagram.data.extend(bytes(end - len(datagram.data)))
+            datagram.have.extend(bytes(-(-end // 8) - len(datagram.have)))
+        datagram.data[start:end] = piece[: end - start]
+        for block in range(start // 8, -(-end // 8)):
+            datagram.blocks += not datagram.have[block]
+            datagram.have[block] = 1
+        datagram.count += 1
+        if datagram.total is None or not datagram.header or datagram.blocks < -(-datagram.total // 8):
+            return None
+        del self.waiting[key]
+        head = datagram.header
+        length = len(head) + datagram.total
+        return head[:2] + struct.pack("!H4x", length) + head[8:] + bytes(datagram.data[: datagram.total])
+
+    def finish(self) -> int:
+        """The fragments of datagrams never completed, all told."""
+        self.given_up += sum(datagram.count for datagram in self.waiting.values())
+        self.waiting.clear()
+        return self.given_up
 
 
 @dataclass(slots=True)
@@ -149,13 +223,37 @@ class Transport:
     skipped: dict[str, int] = field(default_factory=dict)
     elsewhere: dict[tuple[str, int], int] = field(default_factory=dict)  # payloads on other ports
     connections: list[Connection] = field(default_factory=list)  # on the RTU ports, in order of appearance
+    # Each one's Span (`seen`, a dict: a capture of thousands of connections, one per poll, looked each packet's
+    # up in the list); `span`: the one read's, whose records alone are parsed, the others passed over unread
+    # (a file is read once per connection: 1,600 connections of one poll each took 417 s, cubic).
+    spans: dict[Connection, list[int]] = field(default_factory=dict)
+    span: Span | None = None
+    fragments: Fragments = field(default_factory=Fragments)
     judged: set[Connection] = field(default_factory=set)  # connections whose first payload was looked at
     sent: dict[tuple[Connection, str], int] = field(default_factory=dict)  # a TCP sender's next sequence number
+    # A TCP sender's acknowledgments, as Wireshark's analysis keeps them: [last ack, its time (ns), duplicate
+    # ACKs since, window, next sequence number of any segment]
+    acks: dict[tuple[Connection, str], list] = field(default_factory=dict)
 
-    def take(self, linktype: int, record: bytes, number: int) -> Segment | None:
-        """The payload of record `number` when it is the bus's; else None (counted)."""
+    def outside(self, number: int) -> bool:
+        """Record `number` is outside the span of the one connection read: not the bus's, unparsed."""
+        return self.span is not None and not self.span[0] <= number <= self.span[1]
+
+    def past(self, number: int) -> bool:
+        """Record `number` is the last of the one connection read, or after it: the reading can end."""
+        return self.span is not None and number >= self.span[1]
+
+    def take(self, linktype: int, record: bytes, number: int, offset: int = 0, now: int | None = None
+             ) -> Segment | None:
+        """The payload of record `number` (its data at `offset` in the file) when it is the bus's; else None
+        (counted)."""
         self.linktype = linktype if self.linktype is None else self.linktype
         found = segment(linktype, record)
+        if found == "fragmented IP":  # (read whole in its last fragment's packet, as Wireshark's IP gives it)
+            packet = self.fragments.add(network_payload(linktype, record))  # type: ignore[arg-type]
+            if packet is None:
+                return None
+            found = segment(LINKTYPE_RAW, packet)
         if isinstance(found, str):
             return self._skip(found)
         port = self.ports.tcp if found.transport == "TCP" else self.ports.udp
@@ -164,13 +262,23 @@ class Transport:
                 key = (found.transport, min(found.ports))
                 self.elsewhere[key] = self.elsewhere.get(key, 0) + 1
             return self._skip("other ports" if found.declared else f"{found.transport} without payload")
-        if found.connection not in self.connections:
+        span = self.spans.get(found.connection)
+        if span is None:
             self.connections.append(found.connection)
+            self.spans[found.connection] = [number, number, offset]
+        else:
+            span[1] = number
         if self.only is not None and found.connection != self.only:
             return self._skip("other connections")
+        if found.syn:  # (its ports used again, its sequence numbers new: Wireshark's "port numbers reused")
+            for end in found.connection[1:]:
+                self.sent.pop((found.connection, end), None)
+                self.acks.pop((found.connection, end), None)
+        if found.seq is not None:
+            self._acks(found, now)
         if not found.declared:
             return self._skip(f"{found.transport} without payload")
-        if found.seq is not None and self._again(found):
+        if found.seq is not None and self._again(found, now):
             return self._skip("TCP retransmissions")
         if found.connection not in self.judged:  # (its first payload)
             self.judged.add(found.connection)
@@ -191,18 +299,44 @@ class Transport:
             f"transaction {int.from_bytes(data[:2], 'big')}, unit {data[6]}, no CRC), not Modbus RTU frames, "
             "which vw3-decode does not read: tshark with lua/vw3.lua and lua/vw3_modbus.lua names its registers")
 
-    def _again(self, found: Segment) -> bool:
+    def _acks(self, found: Segment, now: int | None) -> None:
+        """Count the sender's duplicate ACKs as Wireshark does (no payload, its window, sequence number and
+        acknowledgment the same as before, no SYN, FIN or RST): two of them make the other end's resend of that
+        byte a fast retransmission, which Wireshark's TCP does give its subdissector."""
+        state = self.acks.setdefault((found.connection, found.sender), [None, None, 0, None, None])
+        duplicate = (not found.declared and found.window and found.window == state[3] and found.seq == state[4]
+                     and found.ack == state[0] and not found.flags & 0x07)
+        state[2] = state[2] + 1 if duplicate else 0
+        if found.ack != state[0]:
+            state[0], state[1] = found.ack, now
+        state[3] = found.window
+        end = (found.seq + found.declared + (found.flags & 0x03 != 0)) & 0xFFFFFFFF  # (SYN and FIN count one)
+        if state[4] is None or not (end - state[4]) & 0x80000000:
+            state[4] = end
+
+    def _fast(self, found: Segment, now: int | None) -> bool:
+        """A resend after two duplicate ACKs of its first byte within 20 ms (Wireshark's fast retransmission)."""
+        other = found.connection[2] if found.sender == found.connection[1] else found.connection[1]
+        state = self.acks.get((found.connection, other))
+        return (state is not None and state[2] >= 2 and state[0] == found.seq and now is not None
+                and state[1] is not None and now - state[1] < 20_000_000)
+
+    def _again(self, found: Segment, now: int | None = None) -> bool:
         """A TCP segment whose bytes all came before (a retransmission): Wireshark's TCP gives it no
         subdissector, so the plugin never sees it. Sequence numbers compared modulo 2**32."""
         end = (found.seq + found.declared) & 0xFFFFFFFF
         sender = (found.connection, found.sender)  # (a server's end is every connection's)
         sent = self.sent.get(sender)
-        if sent is not None:
-            ahead = (end - sent) & 0xFFFFFFFF
-            if ahead == 0 or ahead & 0x80000000:
-                return True
-        self.sent[sender] = end
-        return False
+        if sent is None:
+            self.sent[sender] = end
+            return False
+        if not (end - sent) & 0x80000000:  # (the highest seen, as Wireshark's nextseq: retransmissions too)
+            self.sent[sender] = end
+        # Wireshark's TCP (tcp.no_subdissector_on_error, on by default) gives no subdissector a segment that
+        # starts before the highest sequence number seen (a retransmission or one out of order), even when it
+        # brings new bytes after them: an overlapping one was taken whole, its bytes read twice.
+        behind = (sent - found.seq) & 0xFFFFFFFF
+        return 0 < behind < 0x80000000 and not self._fast(found, now)
 
     def _skip(self, why: str) -> None:
         self.skipped[why] = self.skipped.get(why, 0) + 1
@@ -211,8 +345,12 @@ class Transport:
     def finish(self, warn) -> None:  # type: ignore[no-untyped-def]
         """At the end: refuse a capture none of whose packets carried the bus's bytes; else tell the
         packets passed over, in one warning (`warn(kind, message)`)."""
+        if self.fragments.finish():
+            self.skipped["fragmented IP never reassembled"] = self.fragments.given_up
         if not self.taken and self.only is None:
             raise SourceError(self.refusal())
+        if self.span is not None:  # (a later connection's bus, read over its span: the first bus tells)
+            return
         passed = sum(count for why, count in self.skipped.items() if why != "other connections")
         if passed and (self.only is None or self.connections[:1] == [self.only]):
             said = ", ".join(f"{count} {why}" for why, count in self.skipped.items() if why != "other connections")

@@ -21,7 +21,7 @@ import struct
 from dataclasses import dataclass
 
 from dissector.sources.common import Input, SourceError, WarningLog
-from dissector.sources.ethernet import Connection, RtuPorts
+from dissector.sources.ethernet import Connection, RtuPorts, Span
 from dissector.sources.pcap import PcapRecords, is_pcap, read_pcap
 from dissector.sources.pcapng import (
     EPB,
@@ -46,6 +46,7 @@ class PacketInterface:
     interface: Interface
     first: bool = False  # the file's first bus: it warns of the interfaces carrying no serial bytes
     connection: Connection | None = None  # RTU over TCP/UDP: the one connection of a network capture read
+    span: Span | None = None  # its records' (sources/ethernet.py), read alone by a bus after the first
 
     def label(self) -> str:
         """The interface as a title names it: its if_name, else its description, else its number."""
@@ -85,8 +86,10 @@ def _connections(path: str, _size: int, _mtime: int, ports: RtuPorts) -> tuple[P
         transport, units = chunks.transport, chunks.time_units or 1_000_000
     if transport is None or len(transport.connections) < 2:
         return ()
+    # (the first bus reads the whole file: it tells the packets passed over)
     return tuple(PacketInterface(ordinal, Interface(LINKTYPE_USER0, 0, units, name=f"{kind} {a} - {b}"),
-                                 first=ordinal == 0, connection=(kind, a, b))
+                                 first=ordinal == 0, connection=(kind, a, b),
+                                 span=tuple(transport.spans[(kind, a, b)]) if ordinal else None)
                  for ordinal, (kind, a, b) in enumerate(transport.connections))
 
 
@@ -153,19 +156,19 @@ def open_interface(  # type: ignore[no-untyped-def]
     from dissector.sources.reader import MIN_CHUNK, Source, sampled_mode
 
     chunk_size = max(chunk_size, MIN_CHUNK)
-    connection = None
+    connection, span = None, None
     if ports != RtuPorts():
         buses = packet_interfaces(path, ports)
-        connection = buses[ordinal].connection if ordinal < len(buses) else None
+        connection, span = (buses[ordinal].connection, buses[ordinal].span) if ordinal < len(buses) else (None, None)
     stream = open(path, "rb")
     try:
         log = WarningLog()
         if connection is not None:
-            chunks = _network_chunks(stream, path, log, chunk_size, ports, connection)
+            chunks = _network_chunks(stream, path, log, chunk_size, ports, connection, span, where)
             form = "pcap" if isinstance(chunks, PcapRecords) else "pcapng"
         else:
             chunks = read_pcapng(Input(stream, path), log, chunk_size, only=ordinal, tell_skipped=tell_skipped,
-                                 where=where)
+                                 where=where, ports=ports)
             form = "pcapng"
         head: list = []
         if mode is None:  # as reader.py decides it: the first payload bytes, replayed first
@@ -179,12 +182,18 @@ def open_interface(  # type: ignore[no-untyped-def]
 
 
 def _network_chunks(stream, path: str, log: WarningLog, chunk_size: int, ports: RtuPorts,  # type: ignore[no-untyped-def]
-                    connection: Connection | None):
+                    connection: Connection | None, span: Span | None = None, where: str = ""):
     """The chunks of a pcap or pcapng read for its network link's RTU payloads (`connection`: one's alone);
     their `transport` (sources/ethernet.py): a pcap's from its header, a pcapng's once a network packet is read;
     None for a serial capture."""
-    head = stream.read(4)
+    from dissector.sources.compressed import HEADER_BYTES, Decompressed, compression
+
+    kind = compression(stream.read(HEADER_BYTES), path)
     stream.seek(0)
+    if kind is not None:  # (a .pcap.gz: read decompressed, as reader.py reads it; before, one stream of all)
+        stream = Decompressed(kind, b"", stream, path, log)
+    head = stream.read(4)
+    inp = Input(stream, path, prefix=head)
     if is_pcap(head):
-        return read_pcap(Input(stream, path), log, chunk_size, ports, connection)
-    return read_pcapng(Input(stream, path), log, chunk_size, ports=ports, connection=connection)
+        return read_pcap(inp, log, chunk_size, ports, connection, span, where)
+    return read_pcapng(inp, log, chunk_size, ports=ports, connection=connection, span=span, where=where)

@@ -13,8 +13,9 @@ from collections.abc import Iterator
 from dataclasses import replace
 
 from dissector.model import Chunk, Stamp
-from dissector.sources.ethernet import NETWORK_LINKTYPES, RtuPorts, Transport
+from dissector.sources.ethernet import NETWORK_LINKTYPES, RtuPorts, Span, Transport
 from dissector.sources.common import (
+    Where,
     LINKTYPE_RTAC_SERIAL,
     Input,
     SourceError,
@@ -50,9 +51,10 @@ def is_pcap(head: bytes) -> bool:
 
 
 def read_pcap(inp: Input, log: WarningLog, chunk_size: int, ports: RtuPorts = RtuPorts(),
-              only: tuple[str, str, str] | None = None) -> PcapRecords:
-    """`ports`: a network link's RTU ports; `only`: the one connection read (sources/ethernet.py)."""
-    return PcapRecords(inp, log, chunk_size, ports, only)
+              only: tuple[str, str, str] | None = None, span: Span | None = None, where: str = "") -> PcapRecords:
+    """`ports`: a network link's RTU ports; `only`: the one connection read, over its `span` of the file's
+    records when given (sources/ethernet.py), `where` said before its payloads' warnings (its bus's title)."""
+    return PcapRecords(inp, log, chunk_size, ports, only, span, where)
 
 
 class PcapRecords:
@@ -61,8 +63,9 @@ class PcapRecords:
     was last recording (Dissector's `recorded`; the bulk reader sets it for the records it reads)."""
 
     def __init__(self, inp: Input, log: WarningLog, chunk_size: int, ports: RtuPorts = RtuPorts(),
-                 only: tuple[str, str, str] | None = None) -> None:
-        self.ports, self.only = ports, only
+                 only: tuple[str, str, str] | None = None, span: Span | None = None, where: str = "") -> None:
+        self.ports, self.only, self.span = ports, only, span
+        self.payload_log = Where(log, where) if where else log  # (a connection's record warnings: its bus named)
         self.transport: Transport | None = None  # a network link's (RTU over TCP/UDP)
         self.inp = inp
         self.log = log
@@ -74,6 +77,10 @@ class PcapRecords:
         self.extra = 0  # record header bytes after the standard 16 (modified pcap)
         self.recorded_until: Stamp | None = None
         self._header()  # (at once: its time units set the time column's decimals before any record)
+        seekable = getattr(inp.stream, "seekable", None)  # (not a compressed file's: passed over unread)
+        if self.transport is not None and span is not None and seekable and seekable():  # (its first record)
+            inp.seek(span[2] - RECORD_HEADER_SIZE - self.extra)
+            self.record = span[0] - 1
         self._chunks = self.records(inp)
 
     def __iter__(self) -> PcapRecords:
@@ -109,7 +116,7 @@ class PcapRecords:
         self.linktype = network & 0xFFFF
         check_linktype(inp.name, self.linktype)
         if self.linktype in NETWORK_LINKTYPES:
-            self.transport = Transport(inp.name, self.ports, self.only)
+            self.transport = Transport(inp.name, self.ports, self.only, span=self.span)
         # (read ahead from a file alone, not a live feed: wiretap reads a variant's file only then, "that type
         # of pcap file can't be read from a pipe")
         if self.units == 1_000_000 and rereadable(inp):
@@ -186,10 +193,12 @@ class PcapRecords:
                 )
             time = None if corrupt else Stamp.from_parts(seconds, fraction, self.units)
             if self.transport is not None:  # (a network link: the RTU ports' payloads alone, as records)
-                for chunk in record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size,
-                                           original=original, transport=self.transport):
+                for chunk in record_chunks(inp, captured, time, self.linktype, self.record, self.payload_log,
+                                           self.chunk_size, original=original, transport=self.transport):
                     self.recorded_until = time if time is not None else self.recorded_until
                     yield chunk
+                if self.transport.past(self.record):  # (the connection read has no record after)
+                    return
                 continue
             chunks = record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size,
                                    self._stamped if self.linktype == LINKTYPE_RTAC_SERIAL else None, original)

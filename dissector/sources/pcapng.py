@@ -20,6 +20,7 @@ from dataclasses import dataclass, replace
 
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import (
+    Where,
     LINKTYPE_NAMES,
     LINKTYPE_RTAC_SERIAL,
     LINKTYPE_USER0,
@@ -32,7 +33,7 @@ from dissector.sources.common import (
     outside_time_range,
     record_chunks,
 )
-from dissector.sources.ethernet import NETWORK_LINKTYPES, RtuPorts, Transport
+from dissector.sources.ethernet import NETWORK_LINKTYPES, RtuPorts, Span, Transport
 from dissector.sources.pcap import EpochRecord, within_day_zero
 from dissector.sources.trail import own_comment
 
@@ -100,15 +101,17 @@ class _Reader:
 
     def __init__(self, inp: Input, log: WarningLog, chunk_size: int, first_interface: bool = False,
                  only: int | None = None, tell_skipped: bool = True, where: str = "",
-                 ports: RtuPorts = RtuPorts(), connection: tuple[str, str, str] | None = None) -> None:
+                 ports: RtuPorts = RtuPorts(), connection: tuple[str, str, str] | None = None,
+                 span: Span | None = None) -> None:
         self.inp = inp
-        # A network interface's packets: the RTU ports' payloads (sources/ethernet.py; `connection`: its one read)
-        self.transport = Transport(inp.name, ports, connection)
+        # A network interface's packets: the RTU ports' payloads (sources/ethernet.py; `connection`: its one read,
+        # its records alone parsed, within `span`)
+        self.transport = Transport(inp.name, ports, connection, span=span)
         self.networked = False  # a network interface's packet was read
         # The warnings that number a record: `where` (the bus's title, `file: if_name`) first when the file is
         # read once per interface, each numbering its own records ("record 2" alone sent the reader to the
         # first bus's, or to tshark's frame 2).
-        self.record_log = _Where(log, where) if where else log
+        self.record_log = Where(log, where) if where else log
         self.only = only
         self.tell_skipped = tell_skipped  # count the packets of interfaces not read (one bus of several says)
         self.described = 0  # interfaces described so far in the file, all sections
@@ -163,6 +166,10 @@ class _Reader:
                 self.described += 1
                 if self.first_interface and serial(self.interfaces[-1].linktype):
                     return
+            elif block_type in (EPB, OPB, SPB) and self._passed_over():
+                if inp.skip(body_length) < body_length:
+                    self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
+                    return
             elif block_type in (EPB, OPB):
                 yield from self._packet(block_type, body_length, start)
             elif block_type == SPB:
@@ -178,6 +185,17 @@ class _Reader:
                     return
             if not self._trailer(total, start):
                 return
+
+    def _passed_over(self) -> bool:
+        """A packet not read at all: the interfaces alone are sought (first_interface), or it comes before the
+        span of the one connection read (each packet of a network capture is numbered: sources/ethernet.py)."""
+        if self.first_interface:
+            return True
+        if self.transport.outside(self.record + 1) and self.transport.span is not None:
+            if self.record + 1 < self.transport.span[0]:
+                self.record += 1
+                return True
+        return False
 
     # -- blocks ------------------------------------------------------------------------------
     def _section(self, head: bytes, start: int) -> bool:
@@ -296,16 +314,22 @@ class _Reader:
             # EpochRecord); an RTAC record carries its own time.
             chunks = self._data(captured, original, None, interface, body_length - 20, start)
         yield from chunks
+        if interface.linktype in NETWORK_LINKTYPES and self.transport.past(self.record):
+            raise _Ended()  # (the connection read has no record after: sources/ethernet.py Transport.span)
 
     def skipped_warnings(self) -> None:
         """One line per interface whose packets were passed over, with what they held (every byte of the
         input accounted for)."""
+        ports = self.transport.ports
         for ordinal, (linktype, records, length) in sorted(self.skipped.items()):
             label = LINKTYPE_NAMES.get(linktype, "not a serial line")
+            # (--tcp-port/--udp-port given: say they were not read there, rather than do nothing unsaid)
+            unread = (f"; its {ports.text()} not read: --tcp-port and --udp-port read a network capture without a "
+                      "serial interface" if linktype in NETWORK_LINKTYPES and ports != RtuPorts() else "")
             self.log.warn(
                 "skipped interfaces",
                 f"interface {ordinal}: linktype {linktype} ({label}) carries no serial bytes: "
-                f"{records} record{'s' if records != 1 else ''} ({length} bytes) skipped",
+                f"{records} record{'s' if records != 1 else ''} ({length} bytes) skipped{unread}",
             )
 
     def _recorded(self, interface: Interface, stamp: int) -> None:
@@ -411,16 +435,6 @@ def serial(linktype: int) -> bool:
     return linktype in (LINKTYPE_USER0, LINKTYPE_RTAC_SERIAL)
 
 
-class _Where(WarningLog):
-    """A log's warnings with where they are said first (`file: if_name: record 2: ...`), counted as its own."""
-
-    def __init__(self, log: WarningLog, where: str) -> None:  # (no state of its own: `log` keeps it)
-        self._log, self._where = log, where
-
-    def warn(self, kind: str, message: str) -> None:
-        self._log.warn(kind, f"{self._where}{message}")
-
-
 class _Ended(Exception):
     """The input ended inside a block (already reported): stop reading."""
 
@@ -507,9 +521,9 @@ class PcapngChunks:
 
 def read_pcapng(inp: Input, log: WarningLog, chunk_size: int, only: int | None = None,
                 tell_skipped: bool = True, where: str = "", ports: RtuPorts = RtuPorts(),
-                connection: tuple[str, str, str] | None = None) -> PcapngChunks:
+                connection: tuple[str, str, str] | None = None, span: Span | None = None) -> PcapngChunks:
     """The chunks of a pcapng's packets (`only`: of that interface alone, by its ordinal; `tell_skipped`:
     warn of the interfaces carrying no serial bytes; `where`: said before a warning that numbers a record;
     `ports`, `connection`: a network interface's RTU ports and the one connection read, sources/ethernet.py)."""
     return PcapngChunks(_Reader(inp, log, chunk_size, only=only, tell_skipped=tell_skipped, where=where,
-                                ports=ports, connection=connection))
+                                ports=ports, connection=connection, span=span))

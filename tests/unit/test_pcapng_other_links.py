@@ -80,7 +80,7 @@ def test_no_serial_interface_is_refused(tmp_path: Path, monkeypatch: pytest.Monk
     assert err.splitlines() == [
         f"vw3-decode: {path}: Ethernet (linktype 1): no TCP or UDP payload on the Modbus RTU ports (none given: "
         "--tcp-port and --udp-port, as the plugin's vw3.tcp_port and vw3.udp_port preferences, set them); "
-        "its 1 packet: 1 fragmented IP"]
+        "its 1 packet: 1 fragmented IP never reassembled"]
 
 
 def test_serial_interface_names_the_copy(tmp_path: Path) -> None:
@@ -101,3 +101,15 @@ def test_serial_interface_names_the_copy(tmp_path: Path) -> None:
     assert (status, err) == (0, "")
     copied = first_interface(str(tmp_path / "copy.pcapng"))
     assert copied is not None and (copied.linktype, copied.name) == (147, "/dev/ttyUSB0")
+
+
+def test_the_ports_given_say_they_were_not_read_beside_a_serial_interface(tmp_path: Path) -> None:
+    # --tcp-port given for a pcapng of a serial interface and an Ethernet one: the Ethernet interface's packets
+    # are still passed over (its connections are no bus beside a serial interface), now said where the option
+    # did nothing unsaid.
+    path = tmp_path / "serial_and_ethernet.pcapng"
+    path.write_bytes(_pcapng([147, 1], [(0, 0, REQUEST), (1, 500, ETHERNET), (0, 10_000, ANSWER)]))
+    assert run_cli(["--tcp-port", "4001", str(path)]) == (0, f"     1     0.000000  {READ}\n     2     0.010000  {ANSWERED}\n",
+        "vw3-decode: warning: interface 1: linktype 1 (Ethernet) carries no serial bytes: 1 record (54 bytes) "
+        "skipped; its TCP port 4001 not read: --tcp-port and --udp-port read a network capture without a serial "
+        "interface\n")
