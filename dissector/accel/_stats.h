@@ -691,35 +691,6 @@ static PyObject *time_bins(const Tally *t, size_t n, int bins) {
     return list;
 }
 
-/* pollcycle._timing of each poll key's intervals (TALLY_INTERVALS, in POLL_STEP s steps), exactly: None where a
- * variance's sum is past what a double holds exactly (the Python stages then work it out). */
-static PyObject *poll_timing(const Tally *t, size_t n, int unused) {
-    double total = 0, kept = 0;
-    for (size_t k = 0; k < n; k++) total += t[k].value;
-    long long median = tally_nth(t, n, floor((total + 1) / 2)), skipped = 0, deviation = 0;
-    if (median <= 0) return Py_BuildValue("(d)", 0.0);
-    __int128 sum = 0;
-    for (size_t k = 0; k < n; k++) {
-        long long count = (long long)t[k].value, step = t[k].key;
-        if ((double)step >= POLL_SKIP_FACTOR * (double)median) {
-            skipped += ((long long)rint((double)step / (double)median) - 1) * count;
-            continue;
-        }
-        long long d = llabs(step - median);
-        deviation = d > deviation ? d : deviation;
-        kept += (double)count;
-        sum += (__int128)d * d * count;
-    }
-    if (sum >= (__int128)1 << 53) Py_RETURN_NONE;
-    double variance = kept ? (double)sum / kept : 0.0;
-    return Py_BuildValue("(dddL)", (double)median * POLL_STEP, (double)deviation * POLL_STEP, sqrt(variance) * POLL_STEP,
-                         skipped);
-}
-
-static PyObject *stats_poll_timings(Stats *st, PyObject *unused) {
-    return tally_groups(&st->tallies[TALLY_INTERVALS], ~0u, poll_timing, 0);
-}
-
 /* stats.time_summary of one owner's response times (ns), in seconds: (count, min, median, p95, max, the
  * counts of its histogram of `bins` bins or None). */
 static PyObject *time_summary(const Tally *t, size_t size, int bins) {
@@ -813,8 +784,6 @@ static PyMethodDef stats_methods[] = {
     {"time_summaries", (PyCFunction)stats_time_summaries, METH_VARARGS,
      "{slave << 8 | function: (count, min, median, p95, max, None)} of the response times, in seconds;\n"
      "time_summaries(bins): per slave << 8, with the counts of a histogram of `bins` bins"},
-    {"poll_timings", (PyCFunction)stats_poll_timings, METH_NOARGS,
-     "{poll order: (period, jitter, jitter_sd, skipped), (0.0,) or None} (pollcycle._timing in C)"},
     {"tallies", (PyCFunction)stats_tallies, METH_O, "tallies(kind) -> {owner: {key: count}}: a histogram"},
     {"bus_state", (PyCFunction)stats_bus_state, METH_NOARGS, "BusTiming's state but its histograms"},
     {"table", (PyCFunction)stats_table, METH_VARARGS,

@@ -40,8 +40,7 @@ def render() -> list[str]:
         f"#define CLOSE_MARGIN {bustiming.CLOSE_MARGIN!r}",
         "static const double gap_edges_ms[] = {" + ", ".join(map(repr, bustiming.GAP_EDGES_MS)) + "};",
         "/* --report's pixel columns before a doubling, their first widths, a y's places and series drawn at most",
-        " * (render/report/collect.py), a poll interval's step (s) and the factor past which it counts skipped cycles",
-        " * (render/pollcycle.py), for _report.h and _columns.h; p95's percentile (render/stats.py) and a histogram's",
+        " * (render/report/collect.py) and a poll interval's step (s) (render/pollcycle.py), for _report.h and _columns.h; p95's percentile (render/stats.py) and a histogram's",
         " * bin width when its times are all equal (render/report/html.py), for _stats.h and _report.h. */",
         f"#define COLUMNS {collect.COLUMNS}",
         f"#define TIMED_WIDTH {collect.TIMED_WIDTH!r}",
@@ -49,7 +48,6 @@ def render() -> list[str]:
         f"#define Y_DIGITS {collect.Y_DIGITS}",
         f"#define MAX_SERIES {collect.MAX_SERIES}",
         f"#define POLL_STEP {pollcycle.STEP!r}",
-        f"#define POLL_SKIP_FACTOR {pollcycle.SKIP_FACTOR!r}",
         f"#define PERCENTILE {stats.PERCENTILE!r}",
         f"#define FLAT_BIN {html.FLAT_BIN!r}",
     ]

@@ -108,18 +108,15 @@ class PollCycle:
         """Rows of the keys repeated MIN_REPEATS times or more, by first frame; `timed_rows`: only the
         first that many get their period, jitter and skipped cycles (a table shows no more)."""
         rows = []
-        # (key, poll, its timing when the compiled store worked it out: pollcycle._timing in C)
-        polls: list[tuple[Key, _Poll, tuple[float, ...] | None]] = [(key, poll, None) for key, poll in self._polls.items()]
-        if self.store is not None:
-            timings = self.store.poll_timings() if timed_rows != 0 else {}  # {order: (period, jitter, jitter_sd, skipped) or (0.0,) or None}
-            intervals = self.store.tallies(TALLY_INTERVALS) if None in timings.values() else {}
-            polls = [(key, _Poll(first, count, None, failed, intervals.get(order, {})),
-                      timings.get(order))
+        polls: list[tuple[Key, _Poll]] = list(self._polls.items())
+        if self.store is not None:  # (its intervals are tallies: the same _timing works them out)
+            intervals = self.store.tallies(TALLY_INTERVALS) if timed_rows != 0 else {}
+            polls = [(key, _Poll(first, count, None, failed, intervals.get(order, {})))
                      for order, (key, first, count, failed) in enumerate(self.store.polls())]
         inputs = self._inputs  # (by file, then first frame: each file numbers its frames from 1)
         ordered = sorted(enumerate(polls),
                          key=lambda entry: (bisect_right(inputs, entry[0]), entry[1][1].first_number))
-        for _order, (key, poll, timing) in ordered:
+        for _order, (key, poll) in ordered:
             if poll.count < MIN_REPEATS:
                 continue
             row: dict[str, Any] = {
@@ -137,7 +134,7 @@ class PollCycle:
                 "skipped": 0,
             }
             if timed_rows is None or len(rows) < timed_rows:
-                row.update(_timing(poll.intervals) if timing is None else _timing_of(timing))
+                row.update(_timing(poll.intervals))
             row["misses"] = row["skipped"] + poll.failed
             rows.append(row)
         return rows
@@ -156,11 +153,6 @@ def request_key(frame: Frame) -> Key:
     if frame.subfunction is not None:
         return (frame.slave, frame.function, frame.subfunction)
     return (frame.slave, frame.function)
-
-
-def _timing_of(timing: tuple[float, ...]) -> dict[str, Any]:
-    """The compiled store's timing tuple (Stats.poll_timings) as _timing gives it."""
-    return dict(zip(("period", "jitter", "jitter_sd", "skipped"), timing))
 
 
 def _timing(intervals: dict[int, int]) -> dict[str, Any]:
