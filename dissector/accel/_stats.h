@@ -188,8 +188,7 @@ static inline __attribute__((always_inline)) int param_apply(Param *p, int creat
 
 /* The objects a parameter holds released, each once (the store's end, a merge, a failed rehome). */
 static void param_release(Param *p) {
-    PyObject **held[] = {&p->text, &p->namer, &p->code, &p->code_namer, &p->status};
-    for (size_t k = 0; k < sizeof held / sizeof *held; k++) Py_CLEAR(*held[k]);
+    CLEAR_ALL(&p->text, &p->namer, &p->code, &p->code_namer, &p->status);
 }
 
 #include "_parts.h" /* a parameter two protocol tables' codes count: their parts, the moves of a new device */
@@ -348,12 +347,8 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
 static void stats_dealloc(Stats *st) {
     for (size_t k = 0; k < st->params.count; k++) param_release(&PARAMS(st)[k]);
     for (size_t k = 0; k < st->parts.count; k++) param_release(&((Param *)st->parts.items)[k]);
-    Py_XDECREF(st->report);
-    Py_XDECREF(st->device_tables);
-    for (int k = 0; k < 256; k++) {
-        Py_XDECREF(st->slave_tables[k]);
-        Py_XDECREF(st->tables_namer[k]);
-    }
+    CLEAR_ALL(&st->report, &st->device_tables);
+    for (int k = 0; k < 256; k++) CLEAR_ALL(&st->slave_tables[k], &st->tables_namer[k]);
     dense_free(&st->params);
     dense_free(&st->parts);
     dense_free(&st->polls);
@@ -736,11 +731,11 @@ static PyMethodDef stats_methods[] = {
     {NULL, NULL, 0, NULL},
 };
 
-static PyObject *stats_get_report(Stats *st, void *closure) { return Py_NewRef(st->report ? st->report : Py_None); }
 static int stats_set_report(Stats *st, PyObject *value, void *closure);
 
 static PyGetSetDef stats_getset[] = {
-    {"report", (getter)stats_get_report, (setter)stats_set_report, "a Report fed what is counted here, or None", NULL},
+    {"report", (getter)object_get, (setter)stats_set_report, "a Report fed what is counted here, or None",
+     (void *)offsetof(Stats, report)},
     {NULL, NULL, NULL, NULL, NULL},
 };
 
