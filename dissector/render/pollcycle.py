@@ -24,7 +24,8 @@ then first frame.
 from __future__ import annotations
 
 import math
-from bisect import bisect_right
+from bisect import bisect_left, bisect_right
+from itertools import accumulate
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -156,34 +157,22 @@ def request_key(frame: Frame) -> Key:
 
 
 def _timing(intervals: dict[int, int]) -> dict[str, Any]:
-    total = sum(intervals.values())
-    if not total:
+    if not intervals:
         return {}
-    ordered = sorted(intervals.items())
+    steps = sorted(intervals)
+    seen = list(accumulate(intervals[step] for step in steps))  # how many are at most each step
     # The median interval: with skipped cycles a minority, it is the cycle.
-    half, seen, median = (total + 1) // 2, 0, ordered[-1][0]
-    for step, count in ordered:
-        seen += count
-        if seen >= half:
-            median = step
-            break
+    median = steps[bisect_left(seen, (seen[-1] + 1) // 2)]
     if median <= 0:
         return {"period": 0.0}
-    skipped = 0
-    deviations: list[tuple[int, int]] = []
-    for step, count in ordered:
-        if step >= SKIP_FACTOR * median:
-            skipped += (round(step / median) - 1) * count
-        else:
-            deviations.append((step - median, count))
-    kept = sum(count for _, count in deviations)
-    jitter = max(abs(deviation) for deviation, _ in deviations) * STEP if deviations else 0.0
-    variance = sum(deviation * deviation * count for deviation, count in deviations) / kept if kept else 0.0
+    cut = bisect_left(steps, SKIP_FACTOR * median)  # (from there on, skipped cycles)
+    kept = steps[:cut]
+    variance = sum((step - median) ** 2 * intervals[step] for step in kept) / seen[cut - 1]
     return {
         "period": median * STEP,
-        "jitter": jitter,
+        "jitter": max(abs(kept[0] - median), abs(kept[-1] - median)) * STEP,
         "jitter_sd": math.sqrt(variance) * STEP,
-        "skipped": skipped,
+        "skipped": sum((round(step / median) - 1) * intervals[step] for step in steps[cut:]),
     }
 
 

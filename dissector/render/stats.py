@@ -37,6 +37,8 @@ from __future__ import annotations
 
 import json
 import math
+from bisect import bisect_left
+from itertools import accumulate
 from dataclasses import dataclass, field, replace
 from collections.abc import Callable, Iterator
 from typing import Any
@@ -224,20 +226,20 @@ class StatsCollector:
             own = merged.get((slave, function))
             # (what the COUNT_* keys leave are the exception codes; every output sorts them)
             stats = FunctionStats(requests=counts.pop(COUNT_REQUESTS, 0), responses=counts.pop(COUNT_RESPONSES, 0),
-                                  unanswered=counts.pop(COUNT_UNANSWERED, 0), exceptions=counts)
+                                  unanswered=counts.pop(COUNT_UNANSWERED, 0), exceptions=counts,
+                                  times=times.pop(owner, {}))  # (every response time is in the store, both sides')
             if own is not None:
                 stats.requests += own.requests
                 stats.responses += own.responses
                 stats.unanswered += own.unanswered
                 stats.broadcasts, stats.crc_errors = own.broadcasts, own.crc_errors
-                for key, count in own.times.items():
-                    stats.times[key] = stats.times.get(key, 0) + count
                 for code, count in own.exceptions.items():
                     stats.exceptions[code] = stats.exceptions.get(code, 0) + count
             merged[(slave, function)] = stats
-        if self.attached:  # (every response time is in the store, from either side)
-            for (slave, function), stats in merged.items():
-                merged[(slave, function)] = replace(stats, times=times.get(slave << 8 | function, {}))
+        if self.attached:  # (pairs the Python stages alone counted)
+            for (slave, function), stats in self.functions.items():
+                if merged[(slave, function)] is stats:
+                    merged[(slave, function)] = replace(stats, times=times.get(slave << 8 | function, {}))
         return merged
 
     def report(self, with_parameters: bool = True, poll_rows: int | None = None) -> dict[str, Any]:
@@ -523,25 +525,21 @@ def time_summary(times: dict[int, int]) -> dict[str, float | int] | None:
     """count, min, median, p95 (nearest rank) and max, in seconds, of a histogram of ns."""
     if not times:
         return None
-    ordered = sorted(times.items())
-    count = sum(number for _value, number in ordered)
+    values = sorted(times)
+    seen = list(accumulate(times[value] for value in values))  # how many are at most each value
+    count = seen[-1]
 
     def nth(rank: int) -> int:  # the rank-th smallest time (1-based)
-        seen = 0
-        for value, number in ordered:
-            seen += number
-            if seen >= rank:
-                return value
-        return ordered[-1][0]
+        return values[bisect_left(seen, rank)]
 
     half = count // 2
     median = nth(half + 1) if count % 2 else (nth(half) + nth(half + 1)) / 2
     return {
         "count": count,
-        "min": ordered[0][0] / 1e9,
+        "min": values[0] / 1e9,
         "median": median / 1e9,
         "p95": nth(max(1, math.ceil(PERCENTILE * count))) / 1e9,
-        "max": ordered[-1][0] / 1e9,
+        "max": values[-1] / 1e9,
     }
 
 
