@@ -251,9 +251,7 @@ static int trends_full(Report *r) {
 
 /* A trend's references released (a series not kept yet is borrowed: none). */
 static void trend_release(Trend *t) {
-    if (t->columns == NULL) return;
-    Py_CLEAR(t->series);
-    Py_CLEAR(t->columns);
+    if (t->columns != NULL) CLEAR_ALL(&t->series, (PyObject **)&t->columns);
 }
 
 /* A new device for this slave (its namer another: profile `auto`): its trends forgotten (zeroed in place: key 0,
@@ -405,14 +403,10 @@ static int report_init(Report *r, PyObject *args, PyObject *kwargs) {
 
 static void report_dealloc(Report *r) {
     for (Trend *t = (Trend *)r->trends.items; t < (Trend *)r->trends.items + r->trends.count; t++) trend_release(t);
-    for (int k = 0; k < 256; k++) {
-        Py_XDECREF(r->h_columns[k]);
-        Py_XDECREF(r->namers[k]);
-    }
+    for (int k = 0; k < 256; k++) CLEAR_ALL((PyObject **)&r->h_columns[k], &r->namers[k]);
     dense_free(&r->trends);
     dense_free(&r->points);
-    PyObject *objects[] = {r->collector, r->health, r->stamp, r->exception, r->series, r->h_series};
-    for (int k = 0; k < 6; k++) Py_XDECREF(objects[k]);
+    CLEAR_ALL(&r->collector, &r->health, &r->stamp, &r->exception, &r->series, &r->h_series);
     Py_TYPE(r)->tp_free((PyObject *)r);
 }
 

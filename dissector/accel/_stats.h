@@ -188,8 +188,7 @@ static inline __attribute__((always_inline)) int param_apply(Param *p, int creat
 
 /* The objects a parameter holds released, each once (the store's end, a merge, a failed rehome). */
 static void param_release(Param *p) {
-    PyObject **held[] = {&p->text, &p->namer, &p->code, &p->code_namer, &p->status};
-    for (size_t k = 0; k < sizeof held / sizeof *held; k++) Py_CLEAR(*held[k]);
+    CLEAR_ALL(&p->text, &p->namer, &p->code, &p->code_namer, &p->status);
 }
 
 #include "_parts.h" /* a parameter two protocol tables' codes count: their parts, the moves of a new device */
@@ -348,12 +347,8 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
 static void stats_dealloc(Stats *st) {
     for (size_t k = 0; k < st->params.count; k++) param_release(&PARAMS(st)[k]);
     for (size_t k = 0; k < st->parts.count; k++) param_release(&((Param *)st->parts.items)[k]);
-    Py_XDECREF(st->report);
-    Py_XDECREF(st->device_tables);
-    for (int k = 0; k < 256; k++) {
-        Py_XDECREF(st->slave_tables[k]);
-        Py_XDECREF(st->tables_namer[k]);
-    }
+    CLEAR_ALL(&st->report, &st->device_tables);
+    for (int k = 0; k < 256; k++) CLEAR_ALL(&st->slave_tables[k], &st->tables_namer[k]);
     dense_free(&st->params);
     dense_free(&st->parts);
     dense_free(&st->polls);
@@ -629,116 +624,32 @@ static int tally_order(const void *a, const void *b) {
     return x->key < y->key ? -1 : x->key > y->key;
 }
 
-/* The rank-th smallest key (1-based) of n sorted tallies (stats.time_summary's nth). */
-static long long tally_nth(const Tally *t, size_t n, double rank) {
-    double seen = 0;
-    for (size_t k = 0; k < n; k++)
-        if ((seen += t[k].value) >= rank) return t[k].key;
-    return t[n - 1].key;
-}
-
-/* {owner: row(its tallies, how many, arg)} of one kind's tallies sorted by owner (tag & mask), then key;
- * row gives a new reference, or NULL with an exception set. */
-static PyObject *tally_groups(const Tallies *table, uint32_t mask, PyObject *(*row)(const Tally *, size_t, int), int arg) {
-    size_t n = table->d.count;
-    Tally *all = PyMem_Malloc((n ? n : 1) * sizeof *all);
-    if (all == NULL) return PyErr_NoMemory();
-    for (size_t k = 0; k < n; k++) all[k] = ((const Tally *)table->d.items)[k], all[k].tag &= mask;
-    qsort(all, n, sizeof *all, tally_order);
-    PyObject *groups = PyDict_New();
-    for (size_t first = 0, end = 0; groups != NULL && first < n; first = end) {
-        while (end < n && all[end].tag == all[first].tag) end++;
-        if (dict_put(groups, PyLong_FromUnsignedLong(all[first].tag & 0xFFFFFF), row(all + first, end - first, arg)) < 0)
-            Py_CLEAR(groups);
-    }
-    PyMem_Free(all);
-    return groups;
-}
-
-/* {key: count} of one owner's tallies (as floats: `sums`). */
-static PyObject *tally_dict(const Tally *t, size_t n, int sums) {
-    PyObject *dict = PyDict_New();
-    for (size_t k = 0; dict != NULL && k < n; k++)
-        if (dict_put(dict, PyLong_FromLongLong(t[k].key), sums ? PyFloat_FromDouble(t[k].value) : PyLong_FromDouble(t[k].value)) < 0)
-            Py_CLEAR(dict);
-    return dict;
-}
-
-/* tallies(kind) -> {owner: {key: count}} of one histogram (_bus.h TALLY_*), by owner and key; sums (TALLY_MINUTES)
- * as floats. */
+/* tallies(kind) -> {owner: {key: count}} of one histogram (_bus.h TALLY_*), by owner and key (sorted here); sums
+ * (TALLY_MINUTES) as floats. What render/stats.py, pollcycle.py and report/html.py work out of them, they do. */
 static PyObject *stats_tallies(Stats *st, PyObject *arg) {
     int kind;
     if (!PyArg_Parse(arg, "i", &kind)) return NULL;
     if (kind < 0 || kind >= TALLIES) return PyErr_Format(PyExc_ValueError, "tallies: an unknown kind");
-    return tally_groups(&st->tallies[kind], ~0u, tally_dict, kind == TALLY_MINUTES);
-}
-
-/* The counts of a histogram of `bins` bins of n sorted response times (ns) as html.py _slaves makes it:
- * from the lowest to the highest, (high - low) / bins wide (FLAT_BIN when all are equal); None: no bins. */
-static PyObject *time_bins(const Tally *t, size_t n, int bins) {
-    if (bins <= 0) Py_RETURN_NONE;
-    double low = (double)t[0].key / 1e9, width = ((double)t[n - 1].key / 1e9 - low) / bins, *counts;
-    if (width == 0.0) width = FLAT_BIN;
-    if ((counts = PyMem_Calloc((size_t)bins, sizeof *counts)) == NULL) return PyErr_NoMemory();
-    for (size_t k = 0; k < n; k++) {
-        long long bin = (long long)(((double)t[k].key / 1e9 - low) / width);
-        counts[bin < bins - 1 ? bin : bins - 1] += t[k].value;
-    }
-    PyObject *list = PyList_New(0);
-    for (int k = 0; list != NULL && k < bins; k++)
-        if (list_put(list, PyLong_FromDouble(counts[k])) < 0) Py_CLEAR(list);
-    PyMem_Free(counts);
-    return list;
-}
-
-/* pollcycle._timing of each poll key's intervals (TALLY_INTERVALS, in POLL_STEP s steps), exactly: None where a
- * variance's sum is past what a double holds exactly (the Python stages then work it out). */
-static PyObject *poll_timing(const Tally *t, size_t n, int unused) {
-    double total = 0, kept = 0;
-    for (size_t k = 0; k < n; k++) total += t[k].value;
-    long long median = tally_nth(t, n, floor((total + 1) / 2)), skipped = 0, deviation = 0;
-    if (median <= 0) return Py_BuildValue("(d)", 0.0);
-    __int128 sum = 0;
-    for (size_t k = 0; k < n; k++) {
-        long long count = (long long)t[k].value, step = t[k].key;
-        if ((double)step >= POLL_SKIP_FACTOR * (double)median) {
-            skipped += ((long long)rint((double)step / (double)median) - 1) * count;
-            continue;
+    const Tallies *table = &st->tallies[kind];
+    size_t n = table->d.count;
+    Tally *all = PyMem_Malloc((n ? n : 1) * sizeof *all);
+    if (all == NULL) return PyErr_NoMemory();
+    memcpy(all, table->d.items, n * sizeof *all);
+    qsort(all, n, sizeof *all, tally_order);
+    PyObject *groups = PyDict_New(), *dict = NULL;
+    for (size_t k = 0; groups != NULL && k < n; k++) {
+        if (k == 0 || all[k].tag != all[k - 1].tag) {
+            dict = PyDict_New();
+            if (dict_put(groups, PyLong_FromUnsignedLong(all[k].tag & 0xFFFFFF), dict) < 0) {
+                Py_CLEAR(groups);
+                break;
+            }
         }
-        long long d = llabs(step - median);
-        deviation = d > deviation ? d : deviation;
-        kept += (double)count;
-        sum += (__int128)d * d * count;
+        PyObject *count = kind == TALLY_MINUTES ? PyFloat_FromDouble(all[k].value) : PyLong_FromDouble(all[k].value);
+        if (dict_put(dict, PyLong_FromLongLong(all[k].key), count) < 0) Py_CLEAR(groups);
     }
-    if (sum >= (__int128)1 << 53) Py_RETURN_NONE;
-    double variance = kept ? (double)sum / kept : 0.0;
-    return Py_BuildValue("(dddL)", (double)median * POLL_STEP, (double)deviation * POLL_STEP, sqrt(variance) * POLL_STEP,
-                         skipped);
-}
-
-static PyObject *stats_poll_timings(Stats *st, PyObject *unused) {
-    return tally_groups(&st->tallies[TALLY_INTERVALS], ~0u, poll_timing, 0);
-}
-
-/* stats.time_summary of one owner's response times (ns), in seconds: (count, min, median, p95, max, the
- * counts of its histogram of `bins` bins or None). */
-static PyObject *time_summary(const Tally *t, size_t size, int bins) {
-    double count = 0;
-    for (size_t k = 0; k < size; k++) count += t[k].value;
-    unsigned long long half = (unsigned long long)count / 2;
-    double median = (unsigned long long)count % 2 ? (double)tally_nth(t, size, (double)half + 1)
-                  : (double)(tally_nth(t, size, (double)half) + tally_nth(t, size, (double)half + 1)) / 2;
-    double p95 = (double)tally_nth(t, size, fmax(1.0, ceil(PERCENTILE * count)));
-    return Py_BuildValue("(KddddN)", (unsigned long long)count, (double)t[0].key / 1e9, median / 1e9, p95 / 1e9,
-                         (double)t[size - 1].key / 1e9, time_bins(t, size, bins));
-}
-
-/* time_summaries() -> {slave << 8 | function: time_summary} of each pair's response times, without a dict
- * of them in Python; time_summaries(bins): per slave << 8, with its histogram (report/html.py _slaves). */
-static PyObject *stats_time_summaries(Stats *st, PyObject *args) {
-    int bins = 0;
-    if (!PyArg_ParseTuple(args, "|i", &bins)) return NULL;
-    return tally_groups(&st->tallies[TALLY_TIMES], bins > 0 ? ~0xFFu : ~0u, time_summary, bins);
+    PyMem_Free(all);
+    return groups;
 }
 
 /* bus_state(): what BusTiming keeps but its histograms (tallies()), for the report (bustiming.py). */
@@ -810,11 +721,6 @@ static PyMethodDef stats_methods[] = {
      "bus_item(time, length, kind, slave, broadcast, unanswered, crc_ok, response_time, number, offset)"},
     {"stamp", (PyCFunction)stats_stamp, METH_O, "stamp(time): an item's time (first and last seen)"},
     {"response", (PyCFunction)stats_response, METH_VARARGS, "response(slave, function, ns): a response time"},
-    {"time_summaries", (PyCFunction)stats_time_summaries, METH_VARARGS,
-     "{slave << 8 | function: (count, min, median, p95, max, None)} of the response times, in seconds;\n"
-     "time_summaries(bins): per slave << 8, with the counts of a histogram of `bins` bins"},
-    {"poll_timings", (PyCFunction)stats_poll_timings, METH_NOARGS,
-     "{poll order: (period, jitter, jitter_sd, skipped), (0.0,) or None} (pollcycle._timing in C)"},
     {"tallies", (PyCFunction)stats_tallies, METH_O, "tallies(kind) -> {owner: {key: count}}: a histogram"},
     {"bus_state", (PyCFunction)stats_bus_state, METH_NOARGS, "BusTiming's state but its histograms"},
     {"table", (PyCFunction)stats_table, METH_VARARGS,
@@ -825,11 +731,11 @@ static PyMethodDef stats_methods[] = {
     {NULL, NULL, 0, NULL},
 };
 
-static PyObject *stats_get_report(Stats *st, void *closure) { return Py_NewRef(st->report ? st->report : Py_None); }
 static int stats_set_report(Stats *st, PyObject *value, void *closure);
 
 static PyGetSetDef stats_getset[] = {
-    {"report", (getter)stats_get_report, (setter)stats_set_report, "a Report fed what is counted here, or None", NULL},
+    {"report", (getter)object_get, (setter)stats_set_report, "a Report fed what is counted here, or None",
+     (void *)offsetof(Stats, report)},
     {NULL, NULL, NULL, NULL, NULL},
 };
 

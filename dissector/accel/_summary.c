@@ -166,6 +166,18 @@ static int dict_put(PyObject *dict, PyObject *key, PyObject *value) {
     return status;
 }
 
+/* The references at these places released, the places emptied (the types' clean-up). */
+#define CLEAR_ALL(...) clear_all((PyObject **[]){__VA_ARGS__}, sizeof (PyObject **[]){__VA_ARGS__} / sizeof(PyObject **))
+static void clear_all(PyObject **const *held, size_t n) {
+    for (size_t k = 0; k < n; k++) Py_CLEAR(*held[k]);
+}
+
+/* A getter of the object at offset `closure` in its owner (Engine.stats and judge, Stats.report); NULL: None. */
+static PyObject *object_get(PyObject *owner, void *closure) {
+    PyObject *value = *(PyObject **)((char *)owner + (size_t)closure);
+    return Py_NewRef(value != NULL ? value : Py_None);
+}
+
 /* An exception of `type` set: -1 (PyErr_Format's NULL, for the functions that answer an int). */
 static int fail(PyObject *type, const char *text) {
     PyErr_SetString(type, text);
@@ -1421,12 +1433,6 @@ static PyObject *engine_run(Engine *e, PyObject *args) {
     return Py_BuildValue("(Nni)", lines, pos, step == STEP_NEED ? STATUS_NEED : STATUS_HANDOVER);
 }
 
-/* stats and judge: the object at offset `closure` in the engine, None for none (NULL). */
-static PyObject *engine_get_object(Engine *e, void *closure) {
-    PyObject *value = *(PyObject **)((char *)e + (size_t)closure);
-    return Py_NewRef(value != NULL ? value : Py_None);
-}
-
 /* stats and judge (at offset `closure`) are set between two runs only, to a Stats or to the judge bitmap
  * (a bit per slave and function code), or to None (NULL). */
 static int engine_set_object(Engine *e, PyObject *value, void *closure) {
@@ -1475,7 +1481,7 @@ static int engine_traverse(Engine *e, visitproc visit, void *arg) {
 
 static int engine_clear(Engine *e) {
     PyObject **held[] = ENGINE_HELD(e);
-    for (size_t k = 0; k < sizeof held / sizeof *held; k++) Py_CLEAR(*held[k]);
+    clear_all(held, sizeof held / sizeof *held);
     pieces_clear(e);
     for (int k = 0; k < 256; k++) slave_clear(&e->slaves[k]);
     return 0;
@@ -1535,9 +1541,9 @@ static PyMemberDef engine_members[] = {
 };
 
 static PyGetSetDef engine_getset[] = {
-    {"stats", (getter)engine_get_object, (setter)engine_set_object,
+    {"stats", (getter)object_get, (setter)engine_set_object,
      "a Stats that counts every transaction shown here (--stats), or None", (void *)offsetof(Engine, stats)},
-    {"judge", (getter)engine_get_object, (setter)engine_set_object,
+    {"judge", (getter)object_get, (setter)engine_set_object,
      "profile auto's first pass: a bit per (slave, function) whose frames go to the Python stages; no lines",
      (void *)offsetof(Engine, judge)},
     {NULL, NULL, NULL, NULL, NULL},

@@ -401,18 +401,14 @@ enum { COUNT_REQUESTS = 256, COUNT_RESPONSES = 257, COUNT_UNANSWERED = 258 };
 #define CLOSE_MARGIN 0.9
 static const double gap_edges_ms[] = {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0};
 /* --report's pixel columns before a doubling, their first widths, a y's places and series drawn at most
- * (render/report/collect.py), a poll interval's step (s) and the factor past which it counts skipped cycles
- * (render/pollcycle.py), for _report.h and _columns.h; p95's percentile (render/stats.py) and a histogram's
- * bin width when its times are all equal (render/report/html.py), for _stats.h and _report.h. */
+ * (render/report/collect.py) and a poll interval's step (s) (render/pollcycle.py), for _report.h,
+ * _columns.h and _stats.h. */
 #define COLUMNS 600
 #define TIMED_WIDTH 0.001
 #define UNTIMED_WIDTH 1.0
 #define Y_DIGITS 6
 #define MAX_SERIES 400
 #define POLL_STEP 0.0001
-#define POLL_SKIP_FACTOR 1.5
-#define PERCENTILE 0.95
-#define FLAT_BIN 0.0001
 /* The time column -t r's code (accel/timedpath.py CLOCKS; the others' are deltas), for _timeline.h. */
 #define CLOCK_RELATIVE 0
 

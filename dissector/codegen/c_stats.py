@@ -5,8 +5,8 @@ Python, where the pure-Python stages (the reference under VW3_PURE_PYTHON=1) rea
 """
 from __future__ import annotations
 
-from dissector.render import bustiming, pollcycle, stats, stats_store
-from dissector.render.report import collect, html
+from dissector.render import bustiming, pollcycle, stats_store
+from dissector.render.report import collect
 
 # The compiled store's Param.counts by PARAM_*: ParameterStats' counts (render/stats_store.py), in the order of
 # the rows' count columns (ParameterRow: reads..refused at 3..6, changes at 9). (Kept out of stats_store's
@@ -40,16 +40,12 @@ def render() -> list[str]:
         f"#define CLOSE_MARGIN {bustiming.CLOSE_MARGIN!r}",
         "static const double gap_edges_ms[] = {" + ", ".join(map(repr, bustiming.GAP_EDGES_MS)) + "};",
         "/* --report's pixel columns before a doubling, their first widths, a y's places and series drawn at most",
-        " * (render/report/collect.py), a poll interval's step (s) and the factor past which it counts skipped cycles",
-        " * (render/pollcycle.py), for _report.h and _columns.h; p95's percentile (render/stats.py) and a histogram's",
-        " * bin width when its times are all equal (render/report/html.py), for _stats.h and _report.h. */",
+        " * (render/report/collect.py) and a poll interval's step (s) (render/pollcycle.py), for _report.h,",
+        " * _columns.h and _stats.h. */",
         f"#define COLUMNS {collect.COLUMNS}",
         f"#define TIMED_WIDTH {collect.TIMED_WIDTH!r}",
         f"#define UNTIMED_WIDTH {collect.UNTIMED_WIDTH!r}",
         f"#define Y_DIGITS {collect.Y_DIGITS}",
         f"#define MAX_SERIES {collect.MAX_SERIES}",
         f"#define POLL_STEP {pollcycle.STEP!r}",
-        f"#define POLL_SKIP_FACTOR {pollcycle.SKIP_FACTOR!r}",
-        f"#define PERCENTILE {stats.PERCENTILE!r}",
-        f"#define FLAT_BIN {html.FLAT_BIN!r}",
     ]

@@ -24,7 +24,8 @@ then first frame.
 from __future__ import annotations
 
 import math
-from bisect import bisect_right
+from bisect import bisect_left, bisect_right
+from itertools import accumulate
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -108,18 +109,15 @@ class PollCycle:
         """Rows of the keys repeated MIN_REPEATS times or more, by first frame; `timed_rows`: only the
         first that many get their period, jitter and skipped cycles (a table shows no more)."""
         rows = []
-        # (key, poll, its timing when the compiled store worked it out: pollcycle._timing in C)
-        polls: list[tuple[Key, _Poll, tuple[float, ...] | None]] = [(key, poll, None) for key, poll in self._polls.items()]
-        if self.store is not None:
-            timings = self.store.poll_timings() if timed_rows != 0 else {}  # {order: (period, jitter, jitter_sd, skipped) or (0.0,) or None}
-            intervals = self.store.tallies(TALLY_INTERVALS) if None in timings.values() else {}
-            polls = [(key, _Poll(first, count, None, failed, intervals.get(order, {})),
-                      timings.get(order))
+        polls: list[tuple[Key, _Poll]] = list(self._polls.items())
+        if self.store is not None:  # (its intervals are tallies: the same _timing works them out)
+            intervals = self.store.tallies(TALLY_INTERVALS) if timed_rows != 0 else {}
+            polls = [(key, _Poll(first, count, None, failed, intervals.get(order, {})))
                      for order, (key, first, count, failed) in enumerate(self.store.polls())]
         inputs = self._inputs  # (by file, then first frame: each file numbers its frames from 1)
         ordered = sorted(enumerate(polls),
                          key=lambda entry: (bisect_right(inputs, entry[0]), entry[1][1].first_number))
-        for _order, (key, poll, timing) in ordered:
+        for _order, (key, poll) in ordered:
             if poll.count < MIN_REPEATS:
                 continue
             row: dict[str, Any] = {
@@ -137,7 +135,7 @@ class PollCycle:
                 "skipped": 0,
             }
             if timed_rows is None or len(rows) < timed_rows:
-                row.update(_timing(poll.intervals) if timing is None else _timing_of(timing))
+                row.update(_timing(poll.intervals))
             row["misses"] = row["skipped"] + poll.failed
             rows.append(row)
         return rows
@@ -158,40 +156,23 @@ def request_key(frame: Frame) -> Key:
     return (frame.slave, frame.function)
 
 
-def _timing_of(timing: tuple[float, ...]) -> dict[str, Any]:
-    """The compiled store's timing tuple (Stats.poll_timings) as _timing gives it."""
-    return dict(zip(("period", "jitter", "jitter_sd", "skipped"), timing))
-
-
 def _timing(intervals: dict[int, int]) -> dict[str, Any]:
-    total = sum(intervals.values())
-    if not total:
+    if not intervals:
         return {}
-    ordered = sorted(intervals.items())
+    steps = sorted(intervals)
+    seen = list(accumulate(intervals[step] for step in steps))  # how many are at most each step
     # The median interval: with skipped cycles a minority, it is the cycle.
-    half, seen, median = (total + 1) // 2, 0, ordered[-1][0]
-    for step, count in ordered:
-        seen += count
-        if seen >= half:
-            median = step
-            break
+    median = steps[bisect_left(seen, (seen[-1] + 1) // 2)]
     if median <= 0:
         return {"period": 0.0}
-    skipped = 0
-    deviations: list[tuple[int, int]] = []
-    for step, count in ordered:
-        if step >= SKIP_FACTOR * median:
-            skipped += (round(step / median) - 1) * count
-        else:
-            deviations.append((step - median, count))
-    kept = sum(count for _, count in deviations)
-    jitter = max(abs(deviation) for deviation, _ in deviations) * STEP if deviations else 0.0
-    variance = sum(deviation * deviation * count for deviation, count in deviations) / kept if kept else 0.0
+    cut = bisect_left(steps, SKIP_FACTOR * median)  # (from there on, skipped cycles)
+    kept = steps[:cut]
+    variance = sum((step - median) ** 2 * intervals[step] for step in kept) / seen[cut - 1]
     return {
         "period": median * STEP,
-        "jitter": jitter,
+        "jitter": max(abs(kept[0] - median), abs(kept[-1] - median)) * STEP,
         "jitter_sd": math.sqrt(variance) * STEP,
-        "skipped": skipped,
+        "skipped": sum((round(step / median) - 1) * intervals[step] for step in steps[cut:]),
     }
 
 

@@ -37,7 +37,9 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass, field
+from bisect import bisect_left
+from itertools import accumulate
+from dataclasses import dataclass, field, replace
 from collections.abc import Callable, Iterator
 from typing import Any
 
@@ -50,7 +52,7 @@ from dissector.render.pollcycle import PollCycle, describe_key
 from dissector.render import history as history_rules
 from dissector.render.history import UNREADABLE_STATUSES, History
 from dissector.render.stats_store import (
-    COUNT_REQUESTS, COUNT_RESPONSES, COUNT_UNANSWERED, MAX_PARAMETERS, TABLE_NAMES, TALLY_COUNTS, Coarse,
+    COUNT_REQUESTS, COUNT_RESPONSES, COUNT_UNANSWERED, MAX_PARAMETERS, TABLE_NAMES, TALLY_COUNTS, TALLY_TIMES, Coarse,
     ParameterRow, give_back, parameter_rows, stamp, table_label, table_reader,
 )
 from dissector.render.tables import Cell, TableSpec
@@ -197,7 +199,7 @@ class StatsCollector:
         if response_time is not None and response_time >= 0:
             key = round(response_time * 1e9)
             if self.attached:
-                self.store.response(item.slave, item.function, key)  # beside the engine's (time_summaries)
+                self.store.response(item.slave, item.function, key)  # beside the engine's (TALLY_TIMES)
             else:
                 self.times.add(stats.times, key)
 
@@ -212,28 +214,32 @@ class StatsCollector:
     # -- results ------------------------------------------------------------------------------
     def all_functions(self) -> dict[tuple[int, int], FunctionStats]:
         """Per (slave, function) the Python stages' counts plus the engine's (sums: the order of frames does
-        not matter); the response times are the Python stages' (attached, all of them are in the compiled
-        store: its time_summaries). The engine counts only when attached, in the store's TALLY_COUNTS: per
+        not matter); the response times are the Python stages' or, attached, all of them the compiled store's
+        (TALLY_TIMES). The engine counts only when attached, in the store's TALLY_COUNTS: per
         slave << 8 | function, exceptions by their code, requests, responses, unanswered by the COUNT_* keys."""
         merged = dict(self.functions)
         engine = self.store.tallies(TALLY_COUNTS) if self.attached else {}
+        times = self.store.tallies(TALLY_TIMES) if self.attached else {}
         for owner in sorted(engine):  # (in order: the callers' sorts of the pairs then find them sorted)
             counts = engine[owner]
             slave, function = divmod(owner, 256)
             own = merged.get((slave, function))
             # (what the COUNT_* keys leave are the exception codes; every output sorts them)
             stats = FunctionStats(requests=counts.pop(COUNT_REQUESTS, 0), responses=counts.pop(COUNT_RESPONSES, 0),
-                                  unanswered=counts.pop(COUNT_UNANSWERED, 0), exceptions=counts)
+                                  unanswered=counts.pop(COUNT_UNANSWERED, 0), exceptions=counts,
+                                  times=times.pop(owner, {}))  # (every response time is in the store, both sides')
             if own is not None:
                 stats.requests += own.requests
                 stats.responses += own.responses
                 stats.unanswered += own.unanswered
                 stats.broadcasts, stats.crc_errors = own.broadcasts, own.crc_errors
-                for key, count in own.times.items():
-                    stats.times[key] = stats.times.get(key, 0) + count
                 for code, count in own.exceptions.items():
                     stats.exceptions[code] = stats.exceptions.get(code, 0) + count
             merged[(slave, function)] = stats
+        if self.attached:  # (pairs the Python stages alone counted)
+            for (slave, function), stats in self.functions.items():
+                if merged[(slave, function)] is stats:
+                    merged[(slave, function)] = replace(stats, times=times.get(slave << 8 | function, {}))
         return merged
 
     def report(self, with_parameters: bool = True, poll_rows: int | None = None) -> dict[str, Any]:
@@ -242,15 +248,9 @@ class StatsCollector:
         at most (those a table shows)."""
         give_back()
         functions = []
-        # Attached to the compiled store, every response time is there: its summaries, worked out in C.
-        summaries = self.store.time_summaries() if self.attached else None
         counted = sorted(self.all_functions().items())
         for (slave, function), stats in counted:
-            if summaries is None:
-                response_time = time_summary(stats.times)
-            else:
-                summary = summaries.get(slave << 8 | function)
-                response_time = None if summary is None else dict(zip(_TIME_KEYS, summary))
+            response_time = time_summary(stats.times)
             functions.append(
                 {
                     "slave": slave,
@@ -521,32 +521,25 @@ def _parameter_row(members: list[ParameterRow], address_text: Callable[..., str]
     return [str(first[0]), address, code, *(str(value) for value in first[3:7]), last_value or "", str(first[9])]
 
 
-_TIME_KEYS = ("count", "min", "median", "p95", "max")  # time_summary's, as the compiled store gives them
-
-
 def time_summary(times: dict[int, int]) -> dict[str, float | int] | None:
     """count, min, median, p95 (nearest rank) and max, in seconds, of a histogram of ns."""
     if not times:
         return None
-    ordered = sorted(times.items())
-    count = sum(number for _value, number in ordered)
+    values = sorted(times)
+    seen = list(accumulate(times[value] for value in values))  # how many are at most each value
+    count = seen[-1]
 
     def nth(rank: int) -> int:  # the rank-th smallest time (1-based)
-        seen = 0
-        for value, number in ordered:
-            seen += number
-            if seen >= rank:
-                return value
-        return ordered[-1][0]
+        return values[bisect_left(seen, rank)]
 
     half = count // 2
     median = nth(half + 1) if count % 2 else (nth(half) + nth(half + 1)) / 2
     return {
         "count": count,
-        "min": ordered[0][0] / 1e9,
+        "min": values[0] / 1e9,
         "median": median / 1e9,
         "p95": nth(max(1, math.ceil(PERCENTILE * count))) / 1e9,
-        "max": ordered[-1][0] / 1e9,
+        "max": values[-1] / 1e9,
     }
 
 

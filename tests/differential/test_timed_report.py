@@ -128,9 +128,9 @@ def test_bench_mixes_same_report(mix: str, tmp_path: Path, monkeypatch: pytest.M
 
 @pytest.mark.parametrize("seed", range(6))
 def test_poll_timings_in_the_store_as_in_python(seed: int) -> None:
-    """pollcycle's period, jitter and skipped cycles worked out by the compiled store (Stats.poll_timings)
+    """pollcycle's period, jitter and skipped cycles of the compiled store's intervals (its tallies, _timing)
     as by the Python PollCycle: random intervals, skipped cycles, times going back, and intervals of days
-    whose variance a double does not hold exactly (those keys are worked out by Python)."""
+    whose variance a double does not hold exactly."""
     rng = random.Random(seed)
     python, compiled = PollCycle(), PollCycle(new_store())
     ns = 1_700_000_000 * 10**9
