@@ -52,25 +52,16 @@ def _slaves(stats: StatsCollector) -> list[dict[str, Any]]:
             continue
         for value, count in row.times.items():
             times[value] = times.get(value, 0) + count
-    # Attached to the compiled store, the times are there: each slave's summary and histogram made in C.
-    compiled = stats.store.time_summaries(HISTOGRAM_BINS) if stats.attached else None
     result = []
     for entry in slaves.values():
         times = entry.pop("times")
-        if compiled is None:
-            entry["time"] = summary = time_summary(times)
-        else:
-            found = compiled.get(entry["slave"] << 8)
-            entry["time"] = summary = None if found is None else dict(zip(("count", "min", "median", "p95", "max"), found))
+        entry["time"] = summary = time_summary(times)
         if summary is not None:
             low, high = summary["min"], summary["max"]
             width = (high - low) / HISTOGRAM_BINS or FLAT_BIN
-            if compiled is None:
-                counts = [0] * HISTOGRAM_BINS
-                for value, count in times.items():
-                    counts[min(HISTOGRAM_BINS - 1, int((value / 1e9 - low) / width))] += count
-            else:
-                counts = found[5]
+            counts = [0] * HISTOGRAM_BINS
+            for value, count in times.items():
+                counts[min(HISTOGRAM_BINS - 1, int((value / 1e9 - low) / width))] += count
             summary["bins"] = [round((low + (index + 0.5) * width) * 1000, 4) for index in range(HISTOGRAM_BINS)]
             summary["counts"] = counts
         result.append(entry)
