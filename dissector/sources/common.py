@@ -12,15 +12,14 @@ from typing import BinaryIO
 
 from dissector.errors import SourceError
 from dissector.model import Chunk, Stamp
-from dissector.sources.ethernet import NETWORK_LINKTYPES, Transport  # (RTU over TCP/UDP)
+from dissector.sources.ethernet import LINK_NAMES, NETWORK_LINKTYPES, Transport  # (RTU over TCP/UDP)
 
 LINKTYPE_USER0 = 147
 LINKTYPE_RTAC_SERIAL = 250
 SUPPORTED_LINKTYPES = ("147 (USER0) and 250 (RTAC serial); Modbus RTU over TCP/UDP from 0, 1, 101, 113, 228, 229 "
                        "and 276 (network links)")
 # Names for the link types people most often feed us by mistake, for the error message.
-LINKTYPE_NAMES = {0: "NULL", 1: "Ethernet", 101: "raw IP", 113: "Linux cooked", 228: "IPv4", 229: "IPv6",
-                  276: "Linux cooked v2"}
+LINKTYPE_NAMES = LINK_NAMES  # (the network links' names: sources/ethernet.py states them once)
 
 RTAC_HEADER = struct.Struct(">IIBBH")  # seconds, microseconds, event type, control lines, footer
 # Event types from Wireshark's packet-rtacser.c that mean bytes on the line were lost or damaged.
