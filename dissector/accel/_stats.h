@@ -303,6 +303,12 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
     Words written; /* the writes a normal answer confirms (data/modbus.toml [confirm]): counted and drawn */
     const Words *confirmed =
         answer != NULL && !(answer[1] & 0x80) && confirmed_writes(answer, writes, &written) ? &written : NULL;
+    /* A mask write of a slave that follows no memory (frame_is_quiet): a write of its register, the value
+     * known only where and_mask is 0, or_mask (its echo confirms it), else counted as 0 (history.History._mask) */
+    static const uint8_t unknown[2];
+    Words mask = {word(q + 2), 1, word(q + 4) ? unknown : q + 6};
+    if (rules[handled_index(function)].confirm == CONFIRM_MASK)
+        writes = &mask, confirmed = answer != NULL && !(answer[1] & 0x80) && !word(q + 4) ? &mask : NULL;
     int table = slave_table(st, s, slave, function), origin = st->tables[function];
     if (table < 0 || (st->report != NULL && report_transaction(st->report, s, b, qf, af, confirmed, reads, number,
                                                                   table, origin) < 0))

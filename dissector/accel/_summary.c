@@ -1097,8 +1097,9 @@ static int frame_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t leng
     *reads = (Words){0, 0, NULL};
     if (!lift_frame(s, f, length, L, request, out)) return 0;
     /* A mask write sets a followed parameter from the value held (memory.remember_mask), and --stats and
-     * --report count it with that value (history.History._mask): Python's */
-    if (rules[k].confirm == CONFIRM_MASK && (s->seen != NULL || e->stats != NULL)) return 0;
+     * --report count it with that value (history.History._mask): Python's (count_transaction counts a slave's
+     * that follows none) */
+    if (rules[k].confirm == CONFIRM_MASK && s->seen != NULL) return 0;
     if (request == NULL && (check < 0 || (check >= 1 && (long)out->quantity > s->limit[k][0]) ||
                             (check == 2 && (!L->write_quantity_at || (long)out->values.count > s->limit[k][1]))))
         return 0;
