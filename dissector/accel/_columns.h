@@ -109,7 +109,6 @@ static int round_to(double v, int digits, double *r) {
  * unless first. Between 1e-4 and 1e9 the repr of the rounded value is its fixed-point text (as the
  * rounding's dtoa makes it: fixed_text), trailing zeros dropped: no other decimal of `digits` digits or
  * fewer is within half an ulp of it. */
-static const double tens[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
 
 static void json_number(Out *o, double v, int digits, int whole) {
     char text[64];
@@ -125,11 +124,7 @@ static void json_number(Out *o, double v, int digits, int whole) {
         else out_cstr(o, repr);
         PyMem_Free(repr);
     } else {
-        /* v * 10^digits, within 1e-4 of the exact product away from a half: its nearest integer is the rounding's */
-        r = v * tens[digits];
-        int n = fabs(r) < 1e12 && fabs(r - floor(r) - 0.5) > 1e-3
-                    ? fixed_digits(text, (unsigned long long)llabs(llround(r)), digits, signbit(v))
-                    : fixed_text(text, v, digits);
+        int n = fixed_text(text, v, digits);
         if (!digits) text[n++] = '.', text[n++] = '0'; /* (a float's repr: 12.0) */
         while (text[n - 1] == '0' && text[n - 2] != '.') n--;
         out_put(o, text, (size_t)n);

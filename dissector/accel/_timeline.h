@@ -126,7 +126,7 @@ static int fixed_text(char *text, double value, int digits) {
 #ifdef __SIZEOF_INT128__
     int exponent;
     double fraction = frexp(fabs(value), &exponent);
-    if (isfinite(value) && digits >= 1 && digits <= 9 && exponent <= 30) {
+    if (isfinite(value) && digits >= 0 && digits <= 9 && exponent <= 30) {
         unsigned __int128 scaled = (unsigned long long)ldexp(fraction, 53);
         for (int k = 0; k < digits; k++) scaled *= 10;
         int shift = 53 - exponent; /* value * 10^digits = scaled / 2^shift, shift >= 23 */
