@@ -12,6 +12,7 @@ that did carry payloads (Modbus/TCP on 502 named as such: vw3-decode reads its s
 from __future__ import annotations
 
 import struct
+from bisect import bisect_right
 from dataclasses import dataclass, field
 
 from dissector.errors import SourceError
@@ -45,7 +46,9 @@ class RtuPorts:
 
 
 Connection = tuple[str, str, str]  # (transport, one end, the other end): the same both ways
-Span = tuple[int, int, int]  # a connection's first and last record numbers, the file offset of its first's data
+# A connection's first and last record numbers, the file offset of its first's data, the capture's first packet's
+# time and the time of the packet before its first (ns; None: untimed): PacketTimes' start for a bus read alone.
+Span = tuple[int, int, int, "int | None", "int | None"]
 
 
 @dataclass(slots=True)
@@ -142,6 +145,44 @@ def segment(linktype: int, record: bytes) -> Segment | str:
                    bool(flags & 0x02), ack, window, flags)
 
 
+class PacketTimes:
+    """What tshark's time columns count from on a network capture, whose packets without bus bytes are no items
+    (render/timefmt.py Clock): `start`, its first packet's time (frame.time_relative's zero, any packet, any
+    connection's or interface's), and for each of the bus's packets, by the stream offset of its first byte,
+    the time of the packet captured before it (frame.time_delta's reference). ns; None: untimed."""
+
+    def __init__(self, start: int | None = None, last: int | None = None) -> None:
+        self.start, self.last = start, last  # (last: the last packet's read, the next one's reference)
+        self.fed = 0  # the bus's bytes so far
+        self.offsets: list[int] = []
+        self.befores: list[int | None] = []
+
+    def packet(self, ns: int | None) -> int | None:
+        """A packet read at `ns`, the bus's or not: the time of the one before it."""
+        before = self.last
+        if ns is not None:
+            self.start = ns if self.start is None else self.start
+            self.last = ns
+        return before
+
+    def taken(self, length: int, before: int | None) -> None:
+        """The bus's next `length` bytes came in a packet captured after one at `before`."""
+        self.offsets.append(self.fed)
+        self.befores.append(before)
+        self.fed += length
+
+    def before(self, offset: int) -> int | None:
+        """The time of the packet before the one holding the bus's byte at `offset`."""
+        index = bisect_right(self.offsets, offset) - 1
+        return self.befores[index] if index >= 0 else None
+
+    def forget(self, offset: int) -> None:
+        """Items before `offset` are done with (memory stays bounded: the marks read ahead of the framer)."""
+        index = bisect_right(self.offsets, offset) - 1
+        if index > 4096:
+            del self.offsets[:index], self.befores[:index]
+
+
 MAX_DATAGRAMS = 64  # IPv4 datagrams awaiting fragments at once (the oldest dropped): memory bounded, ~8 MB
 
 
@@ -228,12 +269,17 @@ class Transport:
     # (a file is read once per connection: 1,600 connections of one poll each took 417 s, cubic).
     spans: dict[Connection, list[int]] = field(default_factory=dict)
     span: Span | None = None
+    times: PacketTimes = field(default_factory=PacketTimes)
     fragments: Fragments = field(default_factory=Fragments)
     judged: set[Connection] = field(default_factory=set)  # connections whose first payload was looked at
     sent: dict[tuple[Connection, str], int] = field(default_factory=dict)  # a TCP sender's next sequence number
     # A TCP sender's acknowledgments, as Wireshark's analysis keeps them: [last ack, its time (ns), duplicate
     # ACKs since, window, next sequence number of any segment]
     acks: dict[tuple[Connection, str], list] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if self.span is not None:  # (read from its first record: the capture's start and the packet before told)
+            self.times = PacketTimes(self.span[3], self.span[4])
 
     def outside(self, number: int) -> bool:
         """Record `number` is outside the span of the one connection read: not the bus's, unparsed."""
@@ -248,6 +294,7 @@ class Transport:
         """The payload of record `number` (its data at `offset` in the file) when it is the bus's; else None
         (counted)."""
         self.linktype = linktype if self.linktype is None else self.linktype
+        before = self.times.packet(now)
         found = segment(linktype, record)
         if found == "fragmented IP":  # (read whole in its last fragment's packet, as Wireshark's IP gives it)
             packet = self.fragments.add(network_payload(linktype, record))  # type: ignore[arg-type]
@@ -265,7 +312,7 @@ class Transport:
         span = self.spans.get(found.connection)
         if span is None:
             self.connections.append(found.connection)
-            self.spans[found.connection] = [number, number, offset]
+            self.spans[found.connection] = [number, number, offset, self.times.start, before]
         else:
             span[1] = number
         if self.only is not None and found.connection != self.only:
@@ -284,6 +331,7 @@ class Transport:
             self.judged.add(found.connection)
             self._refuse_modbus_tcp(found, port, number)
         self.taken += 1
+        self.times.taken(len(found.data), before)
         return found
 
     def _refuse_modbus_tcp(self, found: Segment, port: int, number: int) -> None:

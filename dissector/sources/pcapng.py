@@ -33,7 +33,7 @@ from dissector.sources.common import (
     outside_time_range,
     record_chunks,
 )
-from dissector.sources.ethernet import NETWORK_LINKTYPES, RtuPorts, Span, Transport
+from dissector.sources.ethernet import NETWORK_LINKTYPES, PacketTimes, RtuPorts, Span, Transport
 from dissector.sources.pcap import EpochRecord, within_day_zero
 from dissector.sources.trail import own_comment
 
@@ -335,12 +335,12 @@ class _Reader:
     def _recorded(self, interface: Interface, stamp: int) -> None:
         """Another interface's timed packet was recorded (passed over). An RTAC record's time is in its
         bytes: that interface's chunks carry it (Dissector.feed)."""
-        if interface.linktype == LINKTYPE_RTAC_SERIAL:
-            return
         seconds, fraction = divmod(stamp, interface.units)
         time = Stamp.from_parts(interface.offset + seconds, fraction, interface.units)
         if outside_time_range(time.ns, interface.offset) is None:  # (else the record's reading refuses it)
-            self.last_time = time
+            self.transport.times.packet(time.ns)  # (a packet tshark shows: a network bus's time column counts it)
+            if interface.linktype != LINKTYPE_RTAC_SERIAL:
+                self.last_time = time
 
     def _simple(self, body_length: int, start: int) -> Iterator[Chunk]:
         raw = self.inp.read(4)
@@ -493,6 +493,13 @@ class PcapngChunks:
     def transport(self) -> Transport | None:
         """Its network interfaces' reading (sources/ethernet.py), once one's packet is read; else None."""
         return self._reader.transport if self._reader.networked else None
+
+    @property
+    def packet_times(self) -> PacketTimes | None:
+        """Its network interfaces' packet times (sources/ethernet.py) when RTU ports are given, but for a serial
+        interface's bus (`only`)."""
+        reader = self._reader
+        return reader.transport.times if reader.transport.ports != RtuPorts() and reader.only is None else None
 
     @property
     def time_units(self) -> int | None:
