@@ -269,6 +269,8 @@ class Transport:
     # (a file is read once per connection: 1,600 connections of one poll each took 417 s, cubic).
     spans: dict[Connection, list[int]] = field(default_factory=dict)
     span: Span | None = None
+    block: int | None = None  # a pcapng's: the file offset of the packet block read, a span's offset
+    seekable: bool = True  # a pcapng's: no interface described after its first packet (a span may be sought)
     times: PacketTimes = field(default_factory=PacketTimes)
     fragments: Fragments = field(default_factory=Fragments)
     judged: set[Connection] = field(default_factory=set)  # connections whose first payload was looked at
@@ -312,7 +314,8 @@ class Transport:
         span = self.spans.get(found.connection)
         if span is None:
             self.connections.append(found.connection)
-            self.spans[found.connection] = [number, number, offset, self.times.start, before]
+            at = offset if self.block is None else self.block
+            self.spans[found.connection] = [number, number, at, self.times.start, before]
         else:
             span[1] = number
         if self.only is not None and found.connection != self.only:

@@ -11,6 +11,7 @@ bounded whatever block sizes the file claims.
 """
 from __future__ import annotations
 
+import functools
 import io
 import os
 import stat
@@ -132,6 +133,7 @@ class _Reader:
         # over: ordinal -> [linktype, records, bytes], told once at the end (skipped_warnings).
         self.skipped: dict[int, list[int]] = {}
         self.unshown = 0  # packet comments of records with no serial byte: no item shows them (comment_warning)
+        self.packeted = False  # a packet block was met (an interface described after one: spans not sought)
 
     def run(self) -> Iterator[Chunk]:
         inp = self.inp
@@ -145,6 +147,7 @@ class _Reader:
                 self.log.warn("truncated input", f"the capture ends inside a block header at byte {start}")
                 return
             if head[:4] == SHB_MAGIC:
+                self.transport.seekable = self.transport.seekable and not self.packeted
                 if not self._section(head, start):
                     return
                 first = False
@@ -162,10 +165,13 @@ class _Reader:
                 if body is None:
                     return
                 self.interfaces.append(_interface(body, self.order, inp.name))
+                self.transport.seekable = self.transport.seekable and not self.packeted
                 self.ordinals.append(self.described)
                 self.described += 1
                 if self.first_interface and serial(self.interfaces[-1].linktype):
                     return
+            elif block_type in (EPB, OPB, SPB) and self._jump(start):
+                continue
             elif block_type in (EPB, OPB, SPB) and self._passed_over():
                 if inp.skip(body_length) < body_length:
                     self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
@@ -185,6 +191,19 @@ class _Reader:
                     return
             if not self._trailer(total, start):
                 return
+
+    def _jump(self, start: int) -> bool:
+        """Go straight to the span of the one connection read from a packet block before it (its offset: the
+        block's, -1 when an interface is described among the packets), as a pcap's bus does: passing over each
+        block before it, 1,600 buses of one poll took 21.8 s, quadratic (1.4 s as a pcap)."""
+        self.packeted = True
+        span = self.transport.span
+        seekable = getattr(self.inp.stream, "seekable", None)  # (not a compressed file's: passed over unread)
+        if span is None or not 0 <= start < span[2] or self.record + 1 >= span[0] or not (seekable and seekable()):
+            return False
+        self.inp.seek(span[2])
+        self.record = span[0] - 1
+        return True
 
     def _passed_over(self) -> bool:
         """A packet not read at all: the interfaces alone are sought (first_interface), or it comes before the
@@ -297,6 +316,7 @@ class _Reader:
                 self._recorded(self.interfaces[index], high << 32 | low)
             return
         interface = self._interface_for(index, start)
+        self.transport.block = start  # (a connection's span starts at its first packet's block)
         seconds, fraction = divmod(high << 32 | low, interface.units)
         time = Stamp.from_parts(interface.offset + seconds, fraction, interface.units)
         outside = outside_time_range(time.ns, interface.offset) if not epoch or self.record == 0 else None
@@ -351,6 +371,7 @@ class _Reader:
         if self._other(0, body_length - 4, start, min(original, body_length - 4)):
             return
         interface = self._interface_for(0, start)
+        self.transport.block = start
         captured = min(original, body_length - 4)
         if interface.snaplen:
             captured = min(captured, interface.snaplen)
@@ -440,6 +461,21 @@ class _Ended(Exception):
 
 
 def first_interface(path: str) -> Interface | None:
+    """first_interface_of, read once for a file's buses (each bus asked: 1,600 connections read a network pcapng's
+    head, up to HEAD_BYTES and no serial interface to stop at, 1,600 times)."""
+    try:
+        status = os.stat(path)
+    except OSError:
+        return None
+    return _first_interface(path, status.st_size, status.st_mtime_ns)
+
+
+@functools.lru_cache(maxsize=8)
+def _first_interface(path: str, _size: int, _mtime: int) -> Interface | None:
+    return first_interface_of(path)
+
+
+def first_interface_of(path: str) -> Interface | None:
     """The first serial interface a pcapng file describes (else its first); None for another format, or a
     file that cannot say.
 
