@@ -25,6 +25,9 @@ NETWORK_LINKTYPES = frozenset({LINKTYPE_NULL, LINKTYPE_ETHERNET, LINKTYPE_RAW, L
 ETHERTYPE_IPV4, ETHERTYPE_IPV6 = 0x0800, 0x86DD
 VLAN_TAGS = (0x8100, 0x88A8, 0x9100)  # 802.1Q, 802.1ad (QinQ) and the older QinQ tag: 4 bytes each
 TCP, UDP = 6, 17
+# IPv6 extension headers before the transport's, as Wireshark's IPv6 walks them: hop-by-hop, routing, destination
+# options (8-byte units after the first 8) and AH (4-byte units after the first 8); the fragment header's 8 bytes.
+IPV6_OPTIONS, IPV6_AH, IPV6_FRAGMENT = frozenset({0, 43, 60}), 51, 44
 MODBUS_TCP_PORT = 502  # Modbus/TCP (MBAP header, no CRC): its own protocol, not the bus's bytes
 OPTIONS = "--tcp-port and --udp-port, as the plugin's vw3.tcp_port and vw3.udp_port preferences,"
 TCP_NAME = "TCP"
@@ -88,9 +91,30 @@ def _ip(packet: bytes) -> tuple[int, bytes, bytes, bytes, int] | str:
             return "fragmented IP"
         return protocol, packet[12:16], packet[16:20], packet[header:total], total - header
     if version == 6 and len(packet) >= 40:
-        length, protocol = struct.unpack_from("!HB", packet, 4)
-        return protocol, packet[8:24], packet[24:40], packet[40 : 40 + length], length
+        chain = _ipv6_chain(packet)
+        if isinstance(chain, str):
+            return chain
+        protocol, at, end, fragment = chain
+        if fragment is not None and struct.unpack_from("!H", packet, fragment + 2)[0] & 0xFFF9:
+            return "fragmented IP"  # (an offset or more fragments; an atomic fragment, neither, is the datagram)
+        return protocol, packet[8:24], packet[24:40], packet[at:end], max(end - at, 0)
     return "not IP"
+
+
+def _ipv6_chain(packet: bytes) -> tuple[int, int, int, int | None] | str:
+    """(the transport's protocol, where its header starts, where the payload ends, where the fragment header is
+    or None) of an IPv6 packet, past its extension headers; or why not."""
+    length, protocol = struct.unpack_from("!HB", packet, 4)
+    at, end, fragment = 40, 40 + length, None
+    while protocol in IPV6_OPTIONS or protocol in (IPV6_AH, IPV6_FRAGMENT):
+        if len(packet) < at + 8:
+            return "IPv6 extension headers captured in part"
+        if protocol == IPV6_FRAGMENT:
+            fragment, size = at, 8
+        else:
+            size = (packet[at + 1] + 2) * 4 if protocol == IPV6_AH else (packet[at + 1] + 1) * 8
+        protocol, at = packet[at], at + size
+    return protocol, at, end, fragment
 
 
 def network_payload(linktype: int, record: bytes) -> bytes | str:
@@ -183,12 +207,12 @@ class PacketTimes:
             del self.offsets[:index], self.befores[:index]
 
 
-MAX_DATAGRAMS = 64  # IPv4 datagrams awaiting fragments at once (the oldest dropped): memory bounded, ~8 MB
+MAX_DATAGRAMS = 64  # IP datagrams awaiting fragments at once (the oldest dropped): memory bounded, ~8 MB
 
 
 @dataclass(slots=True)
 class _Datagram:
-    """An IPv4 datagram's fragments so far: its bytes and which 8-byte blocks of them came."""
+    """An IP datagram's fragments so far: its bytes and which 8-byte blocks of them came."""
 
     header: bytes = b""  # the first fragment's IP header
     data: bytearray = field(default_factory=bytearray)
@@ -199,7 +223,7 @@ class _Datagram:
 
 
 class Fragments:
-    """IPv4 reassembly, as Wireshark's ip.defragment (on by default): a fragmented datagram's transport
+    """IPv4 and IPv6 reassembly, as Wireshark's ip.defragment and ipv6.defragment (on by default): a fragmented datagram's transport
     payload is read in the packet of its last fragment to come, as the plugin is given it. A fragment's cost
     is its length; at most MAX_DATAGRAMS wait, the oldest given up (counted)."""
 
@@ -208,15 +232,33 @@ class Fragments:
         self.given_up = 0  # fragments of datagrams never completed
 
     def add(self, packet: bytes) -> bytes | None:
-        """The whole IPv4 packet once `packet`, a fragment, completes it; else None."""
+        """The whole IP packet once `packet`, a fragment, completes it; else None. An IPv6 datagram is given back
+        with its 40-byte header alone before its transport's (its extension headers read)."""
+        if packet[:1] and packet[0] >> 4 == 6:
+            chain = _ipv6_chain(packet)
+            if isinstance(chain, str):
+                self.given_up += 1
+                return None
+            _protocol, at, end, at_fragment = chain
+            if at_fragment is None:  # (not reached: _ip said "fragmented IP")
+                return None
+            offset_flags, ident = struct.unpack_from("!HI", packet, at_fragment + 2)
+            start, more = offset_flags & 0xFFF8, bool(offset_flags & 1)
+            key = (packet[8:24], packet[24:40], ident, 6)
+            head = packet[:6] + bytes([packet[at_fragment]]) + packet[7:40]  # (its next header the fragment's)
+            return self._piece(key, start, more, packet[at:end], head)
         if len(packet) < 20:
             self.given_up += 1
             return None
         header = (packet[0] & 0x0F) * 4
         total, ident, flags_offset, protocol = struct.unpack_from("!HHHxB", packet, 2)
-        piece = packet[header:total or len(packet)]
         start, more = (flags_offset & 0x1FFF) * 8, bool(flags_offset & 0x2000)
-        key = (packet[12:16], packet[16:20], ident, protocol)
+        return self._piece((packet[12:16], packet[16:20], ident, protocol), start, more,
+                           packet[header:total or len(packet)], packet[:header])
+
+    def _piece(self, key: tuple[bytes, bytes, int, int], start: int, more: bool, piece: bytes, header: bytes
+               ) -> bytes | None:
+        """A fragment's `piece` of the datagram `key` from byte `start` (`header`: its packet's IP header)."""
         datagram = self.waiting.pop(key, None) or _Datagram()
         self.waiting[key] = datagram  # (the most recent last: the first is the oldest)
         if len(self.waiting) > MAX_DATAGRAMS:
@@ -228,7 +270,7 @@ class Fragments:
         if not more:
             datagram.total = end
         if start == 0:
-            datagram.header = packet[:header]
+            datagram.header = header
         if len(datagram.data) < end:
             datagram.data.extend(bytes(end - len(datagram.data)))
             datagram.have.extend(bytes(-(-end // 8) - len(datagram.have)))
@@ -240,9 +282,10 @@ class Fragments:
         if datagram.total is None or not datagram.header or datagram.blocks < -(-datagram.total // 8):
             return None
         del self.waiting[key]
-        head = datagram.header
-        length = len(head) + datagram.total
-        return head[:2] + struct.pack("!H4x", length) + head[8:] + bytes(datagram.data[: datagram.total])
+        head, data = datagram.header, bytes(datagram.data[: datagram.total])
+        if head[0] >> 4 == 6:
+            return head[:4] + struct.pack("!H", datagram.total) + head[6:40] + data
+        return head[:2] + struct.pack("!H4x", len(head) + datagram.total) + head[8:] + data
 
     def finish(self) -> int:
         """The fragments of datagrams never completed, all told."""

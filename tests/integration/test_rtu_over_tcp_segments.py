@@ -1,6 +1,6 @@
 """RTU over TCP/UDP segments as Wireshark's TCP and IP give them to the plugin (sources/ethernet.py): a TCP
 segment starting before the highest sequence number seen is given to no subdissector even when it brings new
-bytes (tcp.no_subdissector_on_error); IPv4 fragments are reassembled (ip.defragment) and the datagram read in
+bytes (tcp.no_subdissector_on_error); IPv4 fragments are reassembled (ip.defragment; IPv6: test_rtu_over_tcp_ipv6.py) and the datagram read in
 its last fragment's packet."""
 from __future__ import annotations
 
