@@ -33,6 +33,7 @@ from dissector.sources.common import (
     check_linktype,
     outside_time_range,
     record_chunks,
+    rereadable,
 )
 from dissector.sources.ethernet import NETWORK_LINKTYPES, PacketTimes, RtuPorts, Span, Transport
 from dissector.sources.pcap import EpochRecord, within_day_zero
@@ -103,8 +104,11 @@ class _Reader:
     def __init__(self, inp: Input, log: WarningLog, chunk_size: int, first_interface: bool = False,
                  only: int | None = None, tell_skipped: bool = True, where: str = "",
                  ports: RtuPorts = RtuPorts(), connection: tuple[str, str, str] | None = None,
-                 span: Span | None = None) -> None:
+                 span: Span | None = None, networks: bool = False, beside: bool = False) -> None:
         self.inp = inp
+        # `networks`: the network interfaces' packets alone are read (a serial interface's passed over, unsaid: its
+        # own bus reads them); `beside`: they are other buses' (a serial bus passes them over, unsaid)
+        self.networks, self.beside = networks, beside
         # A network interface's packets: the RTU ports' payloads (sources/ethernet.py; `connection`: its one read,
         # its records alone parsed, within `span`)
         self.transport = Transport(inp.name, ports, connection, span=span)
@@ -263,9 +267,13 @@ class _Reader:
         """Whether the packet is another interface's than the one read (`only`), or one of an interface
         that carries no serial bytes (counted: skipped_warnings) while another interface does; its
         `space` bytes are then passed over."""
-        unreadable = index < len(self.interfaces) and not serial(self.interfaces[index].linktype)
-        if unreadable and any(serial(interface.linktype) for interface in self.interfaces):
-            if self.tell_skipped:
+        linktype = self.interfaces[index].linktype if index < len(self.interfaces) else None
+        unreadable = linktype is not None and not serial(linktype)
+        if self.networks:
+            if linktype is None or not serial(linktype):
+                return False
+        elif unreadable and any(serial(interface.linktype) for interface in self.interfaces):
+            if self.tell_skipped and not (self.beside and linktype in NETWORK_LINKTYPES):
                 linktype = self.interfaces[index].linktype
                 counts = self.skipped.setdefault(self.ordinals[index], [linktype, 0, 0])
                 counts[1] += 1
@@ -343,9 +351,13 @@ class _Reader:
         ports = self.transport.ports
         for ordinal, (linktype, records, length) in sorted(self.skipped.items()):
             label = LINKTYPE_NAMES.get(linktype, "not a serial line")
-            # (--tcp-port/--udp-port given: say they were not read there, rather than do nothing unsaid)
-            unread = (f"; its {ports.text()} not read: --tcp-port and --udp-port read a network capture without a "
-                      "serial interface" if linktype in NETWORK_LINKTYPES and ports != RtuPorts() else "")
+            # (--tcp-port/--udp-port given: a file's connections on them are buses, read beside the serial ones; none
+            # here, or standard input, read once: said rather than nothing done unsaid)
+            unread = ""
+            if linktype in NETWORK_LINKTYPES and ports != RtuPorts():
+                unread = (f"; no TCP or UDP payload on its {ports.text()}" if rereadable(self.inp.name) else
+                          f"; its {ports.text()} not read in one stream beside a serial interface "
+                          "(vw3-decode FILE reads its connections as buses of their own)")
             self.log.warn(
                 "skipped interfaces",
                 f"interface {ordinal}: linktype {linktype} ({label}) carries no serial bytes: "
@@ -564,9 +576,11 @@ class PcapngChunks:
 
 def read_pcapng(inp: Input, log: WarningLog, chunk_size: int, only: int | None = None,
                 tell_skipped: bool = True, where: str = "", ports: RtuPorts = RtuPorts(),
-                connection: tuple[str, str, str] | None = None, span: Span | None = None) -> PcapngChunks:
+                connection: tuple[str, str, str] | None = None, span: Span | None = None, networks: bool = False,
+                beside: bool = False) -> PcapngChunks:
     """The chunks of a pcapng's packets (`only`: of that interface alone, by its ordinal; `tell_skipped`:
     warn of the interfaces carrying no serial bytes; `where`: said before a warning that numbers a record;
-    `ports`, `connection`: a network interface's RTU ports and the one connection read, sources/ethernet.py)."""
+    `ports`, `connection`: a network interface's RTU ports and the one connection read, sources/ethernet.py;
+    `networks`, `beside`: the network interfaces' packets alone are read, or passed over as other buses')."""
     return PcapngChunks(_Reader(inp, log, chunk_size, only=only, tell_skipped=tell_skipped, where=where,
-                                ports=ports, connection=connection, span=span))
+                                ports=ports, connection=connection, span=span, networks=networks, beside=beside))
