@@ -164,7 +164,7 @@ class Sinks:
         return new_bus(self, annotate)
 
     def new_input(self, key: object, title: str | None, annotate: Annotator | None, mode: str, line: object,
-                  units: int | None = None) -> None:
+                  units: int | None = None, packets: object = None) -> None:
         """An input of the bus `key` (render/buses.py: None, the files read as one stream; a pcapng's
         interface otherwise): its counts become the current ones; `units`: its time units a second, whose
         precision the time column, --watch's lines and -V show (tshark's: 9 decimals of a nanosecond pcap)."""
@@ -176,9 +176,9 @@ class Sinks:
         bus = self.buses.switch(key, title, annotate, cited)
         heard, self.current = self.current, bus
         self.stats, self.bus, self.watch, self.health = bus.stats, bus.timing, bus.watch, bus.health
-        self.clock.units = units
+        self.clock.units, self.clock.packets = units, packets  # (packets: a network capture's, timefmt.py)
         if self.watch is not None:
-            self.watch.clock.units = units  # (its lines' column, as the summary's)
+            self.watch.clock.units, self.watch.clock.packets = units, packets  # (its lines' column, as the summary's)
         if self.report is not None:
             self.report.collector = bus.report
             bus.report.time_units(units)  # (the page's times: 9 decimals where microseconds cannot hold them)
@@ -276,6 +276,8 @@ class Sinks:
             if self.clock.format == "d" or self.clock.deltas:
                 self.clock.keep(items)
             self.output.write(items, self.extra, records, pieces and comments_of(pieces))
+        if self.clock.packets is not None and heard:  # (the packets' times before these are asked no more)
+            self.clock.packets.forget(heard[-1].offset)
 
     def restart_times(self) -> None:
         """A new input: its times count from its own first item (as the time column)."""
@@ -290,18 +292,7 @@ class Sinks:
 
     def _filter_times(self, items: list[Item]) -> None:
         """time_relative and time_delta for -Y: from every item captured, whatever the filter keeps."""
-        context = self.filter_context
-        previous: dict[int, float | None] = {}
-        last = self._last_time
-        for item in items:
-            if item.time is None:
-                continue
-            if context.first is None:
-                context.first = item.time
-            previous[item.number] = last
-            last = item.time
-        self._last_time = last
-        context.previous = previous
+        self._last_time = self.filter_context.captured(items, self._last_time, self.clock.packets)
 
     def _up_to_count(self, items: list[Item]) -> list[Item]:
         """Items up to and including the Nth of -c N; then the decoding stops. Every item counts, a noise
@@ -407,7 +398,7 @@ def _decode_inputs(
     chosen_over_all = choose_over_all(args, env, annotate)
     try:
         for (title, chunks, mode, take_warnings, recorded, timed, fix, (path, source_format),
-             bus, again, units) in inputs(args, env):
+             bus, again, units, packets) in inputs(args, env):
             if sinks.done:
                 break
             line = input_line(path, source_format, args, bus)
@@ -418,7 +409,7 @@ def _decode_inputs(
                 # Another bus's slave 12 is not the first bus's: a device of its own (as the run's before any
                 # frame), its own profile choices (auto) and counts (--stats, --watch).
                 annotate = devices.setdefault(key, annotate if not devices else copy.deepcopy(pristine))
-            sinks.new_input(key, title, annotate, mode, line, units)
+            sinks.new_input(key, title, annotate, mode, line, units, packets)
             # no ==> header over nothing; with -Y none over a file with no match
             sinks.output.new_input(title if sinks.show else None, held=sinks.predicate is not None)
             sinks.restart_times()

@@ -33,17 +33,18 @@ TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic", "tshark-x"]) 
 TIMED_TEXTS = ("hexdump", "traffic", "tshark-x")  # of those, texts: their times' digits say their precision
 
 Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], Callable[[], Any], bool, Fix,
-              tuple[str | None, str | None], "PacketInterface | None", "Callable[[], Any] | None", int | None]
+              tuple[str | None, str | None], "PacketInterface | None", "Callable[[], Any] | None", int | None, Any]
 
 
 def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
-    """(title, chunks, mode, take_warnings, recorded, timed, fix, (path, format), interface, again, units) per
+    """(title, chunks, mode, take_warnings, recorded, timed, fix, (path, format), interface, again, units, packets) per
     input: the files of one ring buffer are one input (app/rings.py), read as one stream, `path` its
     first; a pcapng file with packets from several interfaces is one input per interface, each its own bus
     (sources/interfaces.py), titled `file: interface name`; `recorded`: once read, when its last record was
     made (Source.recorded_until: the other interfaces' records too); `again`: the same input opened anew,
     for profile `auto` to read it twice (None: standard input, a FIFO, --hex: not read twice); `units`: its
-    records' time units a second, whose precision the time column shows (None: not a pcap or pcapng)."""
+    records' time units a second, whose precision the time column shows (None: not a pcap or pcapng); `packets`: a
+    network capture's packet times, the time column's references (sources/ethernet.py PacketTimes; else None)."""
     from dissector.sources.common import rereadable
 
     captures = group_files(args.files)
@@ -53,7 +54,7 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
         fix = typed.fix if typed.repairs else None
         # (timed: its arguments are records, whose ends the compiled timed path keeps; the raw path drops them)
         yield (("--hex" if several else None), typed.chunks, typed.mode, list, lambda: None, True, fix, (None, None),
-               None, None, None)
+               None, None, None, None)
     for shown_name, files in captures:
         path = files[0]
         buses = packet_interfaces(path, _ports(args)) if path != "-" and args.format in (None, "pcap", "pcapng") else []
@@ -75,7 +76,7 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
             take_warnings = _named(source.take_warnings, shown_name, path) if several else source.take_warnings
             yield ((title if several or bus is not None else None), chunks, source.mode, take_warnings,
                    lambda source=source: source.recorded_until, timed, None, (path, source.format), bus,
-                   again, units)
+                   again, units, getattr(source, "packet_times", None))
 
 
 def _named(take_warnings: Callable[[], list[str]], name: str, path: str) -> Callable[[], list[str]]:
@@ -395,7 +396,7 @@ def choose_over_all(args: DecodeOptions, env: Any, annotate: Any) -> bool:
     listed = inputs(args, env)
     try:
         for (title, chunks, mode, _warnings, _recorded, _timed, fix, (path, source_format), bus,
-             again, _units) in listed:
+             again, _units, _packets) in listed:
             selector.source = title  # (the evidence names the file it is in, as the decode cites it)
             try:
                 choose_profiles_first(annotate, args, chunks, mode, path, again,

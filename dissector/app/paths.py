@@ -72,7 +72,8 @@ def decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, dissec
 
         # (the engine writes the column in us or ns: a capture's in other units, cut to its precision as
         # tshark's, are Python's lines)
-        if (sinks.plain_summary_only and sinks.clock.units in (None, MICROS, NANOS)
+        # (nor a network capture's: its references are its packets', timefmt.py Clock.packets, not the items')
+        if (sinks.plain_summary_only and sinks.clock.units in (None, MICROS, NANOS) and sinks.clock.packets is None
                 and timedpath.summarize_input(chunks, dissector, sinks, annotate, warn)):
             return  # pcap, pcapng: the compiled path
         if counted_only(sinks) and timedpath.count_input(chunks, dissector, sinks, annotate, warn):

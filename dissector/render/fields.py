@@ -41,7 +41,7 @@ from typing import Any
 
 from dissector.errors import UsageError
 from dissector.render.filter_fields import (  # not filters: -Y only
-    ALIASES, CATALOGUE, FRAME_FIELDS, ONLY_TRUE, RECORD_KEYS, REGISTER_FIELDS,
+    ALIASES, CATALOGUE, DERIVED_KEYS, FRAME_FIELDS, ONLY_TRUE, RECORD_KEYS, REGISTER_FIELDS, pdu_values,
 )
 from dissector.render.filter_match import item_elements, register_value
 from dissector.protocol.printable import printable
@@ -228,6 +228,8 @@ def _occurrences(record: dict[str, Any], key: str) -> list[Any]:
         # (-Y reads the same occurrences: filter_match.register_value)
         return [value for element in item_elements(record)
                 if (value := register_value(record, element, head)) is not None]
+    if head == "fields" and rest in DERIVED_KEYS:  # (fields.event_list: each event's byte, as modbus.event)
+        return pdu_values(record.get("fields"), rest)
     value = record.get(RECORD_KEYS.get(head, head))
     if rest:
         for part in rest.split("."):

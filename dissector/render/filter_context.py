@@ -60,6 +60,24 @@ class FilterContext:
             return None  # no run to ask (a library caller): not checked
         return spec | self.names.get(field, frozenset())
 
+    def captured(self, items: list[Any], last: float | None, packets: Any) -> float | None:
+        """The time references of `items` as captured, before filtering, after an item at `last` (returned:
+        theirs); a network capture's from its packets, as the time column (render/timefmt.py Clock.packets)."""
+        from dissector.model import Stamp
+        from dissector.render.timefmt import network, packet_before
+
+        previous: dict[int, float | None] = {}
+        packets = network(packets)
+        for item in items:
+            if item.time is None:
+                continue
+            if self.first is None:
+                self.first = item.time if packets is None or packets.start is None else Stamp(packets.start)
+            previous[item.number] = last if packets is None else packet_before(packets, item)
+            last = item.time
+        self.previous = previous
+        return last
+
     def seconds(self, item: Item, key: str) -> float | None:
         time = item.get("time")
         if not isinstance(time, (int, float)):

@@ -58,6 +58,7 @@ FOREIGN_NAMES: dict[str, str] = {
     "modbus.bit_cnt": "quantity", "modbus.regnum16": "address", "modbus.regval_uint16": "value",
     "modbus.diagnostic_code": "subfunction", "modbus.byte_cnt": "fields.byte_count", "modbus.and_mask": "fields.and_mask",
     "modbus.or_mask": "fields.or_mask", "modbus.data": "fields.data", "modbus.mei": "fields.mei_type",
+    "modbus.event": "fields.event_list", "modbus.ev_count": "fields.event_count",
 }
 # field -> its meaning as -Y help and -G fields list it (with what only vw3-decode's filters take, as
 # `alias: exception`)
@@ -87,6 +88,21 @@ def layout_fields() -> Iterator[tuple[str, Any]]:
                 yield owner, sub
 
 
+# Keys the decode adds to a PDU's fields beyond its layout's (decode/fields.py) -> (the function codes whose frames
+# have them, each element's value -T fields writes and -Y tests, its type): FC12's events by their bytes, as
+# tshark's Modbus/TCP writes modbus.event (FT_UINT8, one occurrence an event); --json keeps their names.
+DERIVED_KEYS = {"event_list": ("12", "byte", "uint8")}
+
+
+def pdu_values(fields: Any, key: str) -> list[Any]:
+    """The values of `fields.KEY` in a record's fields: a list's elements (a repeated field), a derived key's
+    elements' values (DERIVED_KEYS), none when absent."""
+    value = fields.get(key) if isinstance(fields, dict) else None
+    found = value if isinstance(value, list) else [] if value is None else [value]
+    derived = DERIVED_KEYS.get(key)
+    return found if derived is None else [element.get(derived[1]) for element in found if isinstance(element, dict)]
+
+
 def pdu_keys() -> dict[str, tuple[str, ...]]:
     """`fields.KEY`: every key a PDU layout of the protocol table parses -> the function codes
     (`exception`) whose frames have it, from the layouts' grammars, not a list kept here."""
@@ -96,6 +112,8 @@ def pdu_keys() -> dict[str, tuple[str, ...]]:
         for owner, sub in layout_fields():
             if owner not in found.setdefault(sub.name, []):
                 found[sub.name].append(owner)
+        for key, (owner, _value, _type) in DERIVED_KEYS.items():
+            found[key] = [owner]
         _PDU_KEYS = {name: tuple(found[name]) for name in sorted(found)}
     return _PDU_KEYS
 
@@ -118,7 +136,7 @@ def pdu_key_types() -> dict[str, str]:
         else:
             ftype = "bytes" if kind == "GreedyBytes" else "none"
         found.setdefault(sub.name, set()).add(ftype)
-    types = {}
+    types = {key: ftype for key, (_owner, _value, ftype) in DERIVED_KEYS.items()}
     for key, kinds in found.items():
         if all(kind.startswith("uint") for kind in kinds):
             types[key] = max(kinds, key=lambda kind: int(kind[4:]))

@@ -16,7 +16,7 @@ from dissector.render.filter_expr import (
     ARITHMETIC, Operand, arithmetic, constant, counted, frame_level, frame_values, negative, typed,
 )
 from dissector.render.filter_fields import (
-    ALIASES, FRAME_FIELDS, REGISTER_FIELDS, TIME_FILTER_FIELDS, unknown_pdu_key,
+    ALIASES, FRAME_FIELDS, REGISTER_FIELDS, TIME_FILTER_FIELDS, pdu_values, unknown_pdu_key,
 )
 from dissector.render.filter_functions import call
 from dissector.render.filter_error import FilterError
@@ -203,9 +203,7 @@ def _parse_field(p: Any) -> Operand:
         key = field[7:]
 
         def elements(item: Item, reg: dict[str, Any] | None) -> list[Any]:
-            fields = item.get("fields")
-            value = fields.get(key) if isinstance(fields, dict) else None
-            found = value if isinstance(value, list) else [] if value is None else [value]
+            found = pdu_values(item.get("fields"), key)
             if tshark_type == "FT_BYTES":  # (hex text in the item)
                 return [data for v in found if (data := as_bytes(v)) is not None]
             return found

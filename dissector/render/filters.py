@@ -85,7 +85,7 @@ from dissector.render.filter_fields import (  # noqa: F401 (re-exported: fields.
     ALIASES, _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, ONLY_TRUE, RECORD_KEYS, REGISTER_FIELDS, REGISTER_TEXTS,
     TIME_FILTER_FIELDS,
     field_listing,
-    pdu_key_types, unknown_pdu_key, whole_number,
+    pdu_key_types, pdu_values, unknown_pdu_key, whole_number,
 )
 from dissector.render.filter_context import CHOICES, SHOWN_CHOICES, SPEC_NAMES, FilterContext  # noqa: F401
 from dissector.render.filter_match import (
@@ -315,9 +315,7 @@ class _Parser:
             test, _ = self.parse_operation(field, ftype, lambda item, element: element, False)
 
         def elements(item: Item) -> list[Any]:
-            fields = item.get("fields")
-            value = fields.get(key) if isinstance(fields, dict) else None
-            return value if isinstance(value, list) else [] if value is None else [value]
+            return pdu_values(item.get("fields"), key)
 
         if all_ne or all_eq or self.every:
             return (lambda item, reg: bool(values := elements(item)) and all(test(item, v) for v in values)), False

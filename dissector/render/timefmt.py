@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 import time as _time
 from dataclasses import dataclass, field
+from typing import Any
 from datetime import datetime, timezone
 
 from dissector.model import Item, Stamp
@@ -117,6 +118,11 @@ class Clock:
     # their precision (column_digits), its times cut to it as tshark's; the others' are rounded to us.
     units: int | None = None
     first: float | None = None  # time of the first timed item captured
+    # A network capture's (sources/ethernet.py PacketTimes): r counts from its first packet and d from the packet
+    # before the item's first, any packet, as tshark's frame.time_relative and frame.time_delta (a packet with no
+    # bus bytes, another connection's or interface's, is no item but a packet tshark shows); dd from the item
+    # shown before, as tshark -Y vw3's time_delta_displayed.
+    packets: Any = None
     _previous_captured: float | None = None
     _previous_shown: float | None = None
     _before: dict[int, float | None] = field(default_factory=dict)  # id(item) -> previous captured time
@@ -128,14 +134,15 @@ class Clock:
     def observe(self, items: list[Item]) -> None:
         """See items as captured, before any display filter (call for every item, in order)."""
         track = self.deltas or self.format == "d"
+        packets = network(self.packets)
         for item in items:
             time = item.time
             if time is None:
                 continue
             if self.first is None:
-                self.first = time
+                self.first = time if packets is None or packets.start is None else Stamp(packets.start)
             if track:
-                self._before[id(item)] = self._previous_captured
+                self._before[id(item)] = self._previous_captured if packets is None else packet_before(packets, item)
             self._previous_captured = time
 
     @property
@@ -190,6 +197,17 @@ class Clock:
         before = self._before
         if before:
             self._before = {id(item): before[id(item)] for item in items if id(item) in before}
+
+
+def network(packets: Any) -> Any:
+    """A network capture's PacketTimes, once its bus has a packet (a serial interface's bus has none)."""
+    return packets if packets is not None and packets.offsets else None
+
+
+def packet_before(packets: Any, item: Item) -> Stamp | None:
+    """The time of the packet captured before the one where `item` starts (None: it is the first)."""
+    before = packets.before(item.offset)
+    return None if before is None else Stamp(before)
 
 
 def utc_text(seconds: float, digits: int = MICRO_DIGITS) -> str:

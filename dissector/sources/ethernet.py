@@ -12,6 +12,7 @@ that did carry payloads (Modbus/TCP on 502 named as such: vw3-decode reads its s
 from __future__ import annotations
 
 import struct
+from bisect import bisect_right
 from dataclasses import dataclass, field
 
 from dissector.errors import SourceError
@@ -24,6 +25,9 @@ NETWORK_LINKTYPES = frozenset({LINKTYPE_NULL, LINKTYPE_ETHERNET, LINKTYPE_RAW, L
 ETHERTYPE_IPV4, ETHERTYPE_IPV6 = 0x0800, 0x86DD
 VLAN_TAGS = (0x8100, 0x88A8, 0x9100)  # 802.1Q, 802.1ad (QinQ) and the older QinQ tag: 4 bytes each
 TCP, UDP = 6, 17
+# IPv6 extension headers before the transport's, as Wireshark's IPv6 walks them: hop-by-hop, routing, destination
+# options (8-byte units after the first 8) and AH (4-byte units after the first 8); the fragment header's 8 bytes.
+IPV6_OPTIONS, IPV6_AH, IPV6_FRAGMENT = frozenset({0, 43, 60}), 51, 44
 MODBUS_TCP_PORT = 502  # Modbus/TCP (MBAP header, no CRC): its own protocol, not the bus's bytes
 OPTIONS = "--tcp-port and --udp-port, as the plugin's vw3.tcp_port and vw3.udp_port preferences,"
 TCP_NAME = "TCP"
@@ -45,7 +49,9 @@ class RtuPorts:
 
 
 Connection = tuple[str, str, str]  # (transport, one end, the other end): the same both ways
-Span = tuple[int, int, int]  # a connection's first and last record numbers, the file offset of its first's data
+# A connection's first and last record numbers, the file offset of its first's data, the capture's first packet's
+# time and the time of the packet before its first (ns; None: untimed): PacketTimes' start for a bus read alone.
+Span = tuple[int, int, int, "int | None", "int | None"]
 
 
 @dataclass(slots=True)
@@ -85,9 +91,30 @@ def _ip(packet: bytes) -> tuple[int, bytes, bytes, bytes, int] | str:
             return "fragmented IP"
         return protocol, packet[12:16], packet[16:20], packet[header:total], total - header
     if version == 6 and len(packet) >= 40:
-        length, protocol = struct.unpack_from("!HB", packet, 4)
-        return protocol, packet[8:24], packet[24:40], packet[40 : 40 + length], length
+        chain = _ipv6_chain(packet)
+        if isinstance(chain, str):
+            return chain
+        protocol, at, end, fragment = chain
+        if fragment is not None and struct.unpack_from("!H", packet, fragment + 2)[0] & 0xFFF9:
+            return "fragmented IP"  # (an offset or more fragments; an atomic fragment, neither, is the datagram)
+        return protocol, packet[8:24], packet[24:40], packet[at:end], max(end - at, 0)
     return "not IP"
+
+
+def _ipv6_chain(packet: bytes) -> tuple[int, int, int, int | None] | str:
+    """(the transport's protocol, where its header starts, where the payload ends, where the fragment header is
+    or None) of an IPv6 packet, past its extension headers; or why not."""
+    length, protocol = struct.unpack_from("!HB", packet, 4)
+    at, end, fragment = 40, 40 + length, None
+    while protocol in IPV6_OPTIONS or protocol in (IPV6_AH, IPV6_FRAGMENT):
+        if len(packet) < at + 8:
+            return "IPv6 extension headers captured in part"
+        if protocol == IPV6_FRAGMENT:
+            fragment, size = at, 8
+        else:
+            size = (packet[at + 1] + 2) * 4 if protocol == IPV6_AH else (packet[at + 1] + 1) * 8
+        protocol, at = packet[at], at + size
+    return protocol, at, end, fragment
 
 
 def network_payload(linktype: int, record: bytes) -> bytes | str:
@@ -142,12 +169,50 @@ def segment(linktype: int, record: bytes) -> Segment | str:
                    bool(flags & 0x02), ack, window, flags)
 
 
-MAX_DATAGRAMS = 64  # IPv4 datagrams awaiting fragments at once (the oldest dropped): memory bounded, ~8 MB
+class PacketTimes:
+    """What tshark's time columns count from on a network capture, whose packets without bus bytes are no items
+    (render/timefmt.py Clock): `start`, its first packet's time (frame.time_relative's zero, any packet, any
+    connection's or interface's), and for each of the bus's packets, by the stream offset of its first byte,
+    the time of the packet captured before it (frame.time_delta's reference). ns; None: untimed."""
+
+    def __init__(self, start: int | None = None, last: int | None = None) -> None:
+        self.start, self.last = start, last  # (last: the last packet's read, the next one's reference)
+        self.fed = 0  # the bus's bytes so far
+        self.offsets: list[int] = []
+        self.befores: list[int | None] = []
+
+    def packet(self, ns: int | None) -> int | None:
+        """A packet read at `ns`, the bus's or not: the time of the one before it."""
+        before = self.last
+        if ns is not None:
+            self.start = ns if self.start is None else self.start
+            self.last = ns
+        return before
+
+    def taken(self, length: int, before: int | None) -> None:
+        """The bus's next `length` bytes came in a packet captured after one at `before`."""
+        self.offsets.append(self.fed)
+        self.befores.append(before)
+        self.fed += length
+
+    def before(self, offset: int) -> int | None:
+        """The time of the packet before the one holding the bus's byte at `offset`."""
+        index = bisect_right(self.offsets, offset) - 1
+        return self.befores[index] if index >= 0 else None
+
+    def forget(self, offset: int) -> None:
+        """Items before `offset` are done with (memory stays bounded: the marks read ahead of the framer)."""
+        index = bisect_right(self.offsets, offset) - 1
+        if index > 4096:
+            del self.offsets[:index], self.befores[:index]
+
+
+MAX_DATAGRAMS = 64  # IP datagrams awaiting fragments at once (the oldest dropped): memory bounded, ~8 MB
 
 
 @dataclass(slots=True)
 class _Datagram:
-    """An IPv4 datagram's fragments so far: its bytes and which 8-byte blocks of them came."""
+    """An IP datagram's fragments so far: its bytes and which 8-byte blocks of them came."""
 
     header: bytes = b""  # the first fragment's IP header
     data: bytearray = field(default_factory=bytearray)
@@ -158,7 +223,7 @@ class _Datagram:
 
 
 class Fragments:
-    """IPv4 reassembly, as Wireshark's ip.defragment (on by default): a fragmented datagram's transport
+    """IPv4 and IPv6 reassembly, as Wireshark's ip.defragment and ipv6.defragment (on by default): a fragmented datagram's transport
     payload is read in the packet of its last fragment to come, as the plugin is given it. A fragment's cost
     is its length; at most MAX_DATAGRAMS wait, the oldest given up (counted)."""
 
@@ -167,15 +232,33 @@ class Fragments:
         self.given_up = 0  # fragments of datagrams never completed
 
     def add(self, packet: bytes) -> bytes | None:
-        """The whole IPv4 packet once `packet`, a fragment, completes it; else None."""
+        """The whole IP packet once `packet`, a fragment, completes it; else None. An IPv6 datagram is given back
+        with its 40-byte header alone before its transport's (its extension headers read)."""
+        if packet[:1] and packet[0] >> 4 == 6:
+            chain = _ipv6_chain(packet)
+            if isinstance(chain, str):
+                self.given_up += 1
+                return None
+            _protocol, at, end, at_fragment = chain
+            if at_fragment is None:  # (not reached: _ip said "fragmented IP")
+                return None
+            offset_flags, ident = struct.unpack_from("!HI", packet, at_fragment + 2)
+            start, more = offset_flags & 0xFFF8, bool(offset_flags & 1)
+            key = (packet[8:24], packet[24:40], ident, 6)
+            head = packet[:6] + bytes([packet[at_fragment]]) + packet[7:40]  # (its next header the fragment's)
+            return self._piece(key, start, more, packet[at:end], head)
         if len(packet) < 20:
             self.given_up += 1
             return None
         header = (packet[0] & 0x0F) * 4
         total, ident, flags_offset, protocol = struct.unpack_from("!HHHxB", packet, 2)
-        piece = packet[header:total or len(packet)]
         start, more = (flags_offset & 0x1FFF) * 8, bool(flags_offset & 0x2000)
-        key = (packet[12:16], packet[16:20], ident, protocol)
+        return self._piece((packet[12:16], packet[16:20], ident, protocol), start, more,
+                           packet[header:total or len(packet)], packet[:header])
+
+    def _piece(self, key: tuple[bytes, bytes, int, int], start: int, more: bool, piece: bytes, header: bytes
+               ) -> bytes | None:
+        """A fragment's `piece` of the datagram `key` from byte `start` (`header`: its packet's IP header)."""
         datagram = self.waiting.pop(key, None) or _Datagram()
         self.waiting[key] = datagram  # (the most recent last: the first is the oldest)
         if len(self.waiting) > MAX_DATAGRAMS:
@@ -187,7 +270,7 @@ class Fragments:
         if not more:
             datagram.total = end
         if start == 0:
-            datagram.header = packet[:header]
+            datagram.header = header
         if len(datagram.data) < end:
             datagram.data.extend(bytes(end - len(datagram.data)))
             datagram.have.extend(bytes(-(-end // 8) - len(datagram.have)))
@@ -199,9 +282,10 @@ class Fragments:
         if datagram.total is None or not datagram.header or datagram.blocks < -(-datagram.total // 8):
             return None
         del self.waiting[key]
-        head = datagram.header
-        length = len(head) + datagram.total
-        return head[:2] + struct.pack("!H4x", length) + head[8:] + bytes(datagram.data[: datagram.total])
+        head, data = datagram.header, bytes(datagram.data[: datagram.total])
+        if head[0] >> 4 == 6:
+            return head[:4] + struct.pack("!H", datagram.total) + head[6:40] + data
+        return head[:2] + struct.pack("!H4x", len(head) + datagram.total) + head[8:] + data
 
     def finish(self) -> int:
         """The fragments of datagrams never completed, all told."""
@@ -228,12 +312,19 @@ class Transport:
     # (a file is read once per connection: 1,600 connections of one poll each took 417 s, cubic).
     spans: dict[Connection, list[int]] = field(default_factory=dict)
     span: Span | None = None
+    block: int | None = None  # a pcapng's: the file offset of the packet block read, a span's offset
+    seekable: bool = True  # a pcapng's: no interface described after its first packet (a span may be sought)
+    times: PacketTimes = field(default_factory=PacketTimes)
     fragments: Fragments = field(default_factory=Fragments)
     judged: set[Connection] = field(default_factory=set)  # connections whose first payload was looked at
     sent: dict[tuple[Connection, str], int] = field(default_factory=dict)  # a TCP sender's next sequence number
     # A TCP sender's acknowledgments, as Wireshark's analysis keeps them: [last ack, its time (ns), duplicate
     # ACKs since, window, next sequence number of any segment]
     acks: dict[tuple[Connection, str], list] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if self.span is not None:  # (read from its first record: the capture's start and the packet before told)
+            self.times = PacketTimes(self.span[3], self.span[4])
 
     def outside(self, number: int) -> bool:
         """Record `number` is outside the span of the one connection read: not the bus's, unparsed."""
@@ -248,6 +339,7 @@ class Transport:
         """The payload of record `number` (its data at `offset` in the file) when it is the bus's; else None
         (counted)."""
         self.linktype = linktype if self.linktype is None else self.linktype
+        before = self.times.packet(now)
         found = segment(linktype, record)
         if found == "fragmented IP":  # (read whole in its last fragment's packet, as Wireshark's IP gives it)
             packet = self.fragments.add(network_payload(linktype, record))  # type: ignore[arg-type]
@@ -265,7 +357,8 @@ class Transport:
         span = self.spans.get(found.connection)
         if span is None:
             self.connections.append(found.connection)
-            self.spans[found.connection] = [number, number, offset]
+            at = offset if self.block is None else self.block
+            self.spans[found.connection] = [number, number, at, self.times.start, before]
         else:
             span[1] = number
         if self.only is not None and found.connection != self.only:
@@ -284,6 +377,7 @@ class Transport:
             self.judged.add(found.connection)
             self._refuse_modbus_tcp(found, port, number)
         self.taken += 1
+        self.times.taken(len(found.data), before)
         return found
 
     def _refuse_modbus_tcp(self, found: Segment, port: int, number: int) -> None:

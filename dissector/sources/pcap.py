@@ -13,7 +13,7 @@ from collections.abc import Iterator
 from dataclasses import replace
 
 from dissector.model import Chunk, Stamp
-from dissector.sources.ethernet import NETWORK_LINKTYPES, RtuPorts, Span, Transport
+from dissector.sources.ethernet import NETWORK_LINKTYPES, PacketTimes, RtuPorts, Span, Transport
 from dissector.sources.common import (
     Where,
     LINKTYPE_RTAC_SERIAL,
@@ -91,6 +91,11 @@ class PcapRecords:
         # (accel/records.py reads the rest in bulk from between two records: standard headers only)
         self.between = chunk.boundary and not self.holding and not self.extra
         return chunk
+
+    @property
+    def packet_times(self) -> PacketTimes | None:
+        """A network link's packet times (sources/ethernet.py), the time column's references."""
+        return None if self.transport is None else self.transport.times
 
     @property
     def time_units(self) -> int:

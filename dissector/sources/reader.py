@@ -240,6 +240,11 @@ class Source:
         return getattr(self._chunks, "recorded_until", None)
 
     @property
+    def packet_times(self) -> object:
+        """A network capture's packet times (sources/ethernet.py PacketTimes); None for others."""
+        return getattr(self._chunks, "packet_times", None)
+
+    @property
     def time_units(self) -> int | None:
         """The time units a second of a pcap's or pcapng's records (the time column's decimals:
         render/timefmt.py column_digits); None: not a binary capture, or one with no record. A pcapng none

@@ -1,6 +1,6 @@
 """RTU over TCP/UDP segments as Wireshark's TCP and IP give them to the plugin (sources/ethernet.py): a TCP
 segment starting before the highest sequence number seen is given to no subdissector even when it brings new
-bytes (tcp.no_subdissector_on_error); IPv4 fragments are reassembled (ip.defragment) and the datagram read in
+bytes (tcp.no_subdissector_on_error); IPv4 fragments are reassembled (ip.defragment; IPv6: test_rtu_over_tcp_ipv6.py) and the datagram read in
 its last fragment's packet."""
 from __future__ import annotations
 
@@ -71,7 +71,7 @@ def test_ip_fragments_are_reassembled(tmp_path: Path) -> None:
                       + bytes(8), time)
     writer.close()
     assert run_cli(["--udp-port", "5021", *ATV71, str(pcap)]) == (0, (
-        f"     1     0.000000  {REQUEST}  CRC ok\n     2     0.010000  {ANSWER_1}\n"),
+        f"     1     0.000100  {REQUEST}  CRC ok\n     2     0.010100  {ANSWER_1}\n"),  # (its last fragment's)
         f"vw3-decode: warning: {pcap}: 2 packets carried no Modbus RTU bytes on UDP port 5021: skipped (2 fragmented IP "
         "never reassembled)\n")
     assert plugin_rows(pcap, "-o", "vw3.udp_port:5021") == ["1||", "2|1|", "3||", "4|2|2", "5||", "6||"]
@@ -99,8 +99,8 @@ def test_a_connection_on_ports_used_again_is_read(tmp_path: Path) -> None:
             segment(False, 5 * base + 11, base + 9, 0x11, b"", time + 0.021)
     writer.close()
     assert run_cli(["--tcp-port", "4001", *ATV71, str(pcap)]) == (0, (
-        f"     1     0.000000  {REQUEST}  CRC ok\n     2     0.010000  {ANSWER_1}\n"
-        f"     3     1.000000  {REQUEST}  CRC ok\n     4     1.010000  {ANSWER_1.replace('#1', '#3')}\n"),
+        f"     1     0.010000  {REQUEST}  CRC ok\n     2     0.020000  {ANSWER_1}\n"  # (from the first SYN)
+        f"     3     1.010000  {REQUEST}  CRC ok\n     4     1.020000  {ANSWER_1.replace('#1', '#3')}\n"),
         f"vw3-decode: warning: {pcap}: 6 packets carried no Modbus RTU bytes on TCP port 4001: skipped (6 TCP "
         "without payload)\n")
     assert [row for row in plugin_rows(pcap, "-o", "vw3.tcp_port:4001") if row.split("|")[1]] == [

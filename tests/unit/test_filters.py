@@ -350,5 +350,7 @@ def test_fields_key_of_t_fields_is_checked_and_listed() -> None:
     assert "fields.read_start      frame     value          PDU key of function 23" in listing
     listed = {line.split()[0][7:] for line in listing if line.startswith("fields.")}
     assert listed == {sub.name for entry in table.FUNCTIONS for layout in (entry.request, entry.response)
-                      for sub in layout.grammar.subcons if sub.name} | {"exception_code", "data", "trailing"}
+                      for sub in layout.grammar.subcons if sub.name} | {"exception_code", "data", "trailing",
+                                                                        "event_list"}  # (FC12's, the decode's)
+    assert "fields.event_list      frame     value          PDU key of function 12" in listing
     assert "KEY" not in listed  # the real names, not a placeholder

@@ -104,12 +104,15 @@ def test_serial_interface_names_the_copy(tmp_path: Path) -> None:
 
 
 def test_the_ports_given_say_they_were_not_read_beside_a_serial_interface(tmp_path: Path) -> None:
-    # --tcp-port given for a pcapng of a serial interface and an Ethernet one: the Ethernet interface's packets
-    # are still passed over (its connections are no bus beside a serial interface), now said where the option
-    # did nothing unsaid.
+    # --tcp-port given for a pcapng of a serial interface and an Ethernet one whose packet carries no TCP or UDP
+    # payload on it: the Ethernet interface's packets are passed over, said (its connections on the port would be
+    # buses beside the serial one: tests/integration/test_rtu_over_tcp_beside_serial.py); from standard input,
+    # read once, they are not read.
     path = tmp_path / "serial_and_ethernet.pcapng"
     path.write_bytes(_pcapng([147, 1], [(0, 0, REQUEST), (1, 500, ETHERNET), (0, 10_000, ANSWER)]))
+    said = "vw3-decode: warning: interface 1: linktype 1 (Ethernet) carries no serial bytes: 1 record (54 bytes) skipped; "
     assert run_cli(["--tcp-port", "4001", str(path)]) == (0, f"     1     0.000000  {READ}\n     2     0.010000  {ANSWERED}\n",
-        "vw3-decode: warning: interface 1: linktype 1 (Ethernet) carries no serial bytes: 1 record (54 bytes) "
-        "skipped; its TCP port 4001 not read: --tcp-port and --udp-port read a network capture without a serial "
-        "interface\n")
+        f"{said}no TCP or UDP payload on its TCP port 4001\n")
+    assert run_cli(["--tcp-port", "4001", "-"], stdin=path.read_bytes())[2] == (
+        f"{said}its TCP port 4001 not read in one stream beside a serial interface (vw3-decode FILE reads its "
+        "connections as buses of their own)\n")
