@@ -3,11 +3,12 @@
 Unlike RTU, ASCII frames delimit themselves: a frame starts at ':' and ends at LF, so no length rule
 is needed to cut the stream. The length rules still decide what a frame is: the decoded binary gets
 the same request / response / exception classification as an RTU frame (rules.py Awaiting._interpretations, applied to
-the RTU frame that would carry the same bytes), so an ASCII frame whose length fits no layout is
-shown as noise, as it would be in RTU.
+the RTU frame that would carry the same bytes). A line whose length fits no layout is a frame all the same when
+its LRC is good (the ':' and the line end bound it, as a record or a silence bounds an RTU frame whose CRC is
+good: bounded.py), with what the decoder says of its bytes; with a bad LRC it is noise.
 
 A candidate that is cut short (a new ':' before the LF, no LF within the longest legal frame, the
-end of the capture), that is not made of hex pairs or whose layout fits nothing becomes a Noise item
+end of the capture), that is not made of hex pairs or whose layout fits nothing with a bad LRC becomes a Noise item
 of its own, with the reason; the answer awaited cut by the end of the capture says so as in RTU ("the
 capture ends inside the response (10 of 17 bytes)", bytes on the wire), which pairing shows on its
 request. A line that lost its CR (text files lose them) is a frame with a warning, and so is one that
@@ -154,11 +155,16 @@ class AsciiFramer(Awaiting, StreamFramer):
             return
         slave, function = binary[0], binary[1]
         received, expected = binary[-1], lrc(binary[:-1])
-        check = text("lrc_ok") if received == expected else text("lrc_wrong", received=received, expected=expected)
         kind = self._classify(binary[:-1])
-        if kind is None:
+        if kind is None and received != expected:
+            check = text("lrc_wrong", received=received, expected=expected)
             self._reject(raw, i, text("no_layout", function=function, check=check), items)
             return
+        if kind is None:
+            # The ':' and the line end bound it and its LRC is good: a frame, as an RTU run with a good CRC between
+            # two bounds is (bounded.py: pymodbus's 118-byte answer to 08/15); the decoder says what its bytes lack.
+            kind = Kind.EXCEPTION if function & 0x80 else (
+                Kind.RESPONSE if self._awaited(binary, 0) else Kind.REQUEST)
         offset = self._base + i
         frame = Frame(
             offset=offset,

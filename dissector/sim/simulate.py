@@ -15,7 +15,9 @@ is reproducible byte for byte.
 from __future__ import annotations
 
 import argparse
+import errno
 import functools
+import os
 import random
 import sys
 from collections.abc import Callable
@@ -374,10 +376,22 @@ def main(argv: list[str] | None = None) -> int:
     )
     parser.add_argument("--seed", type=int, default=0, help="seed of the benchmark session")
     args = parser.parse_args(argv)
+    if args.transactions is not None and args.transactions < 0:
+        parser.error("--transactions must be 0 or more")
+    try:
+        return _write(args)
+    except OSError as error:  # (an output that cannot be written: one line and status 1, as vw3-decode's)
+        where = error.filename if error.filename is not None else args.out
+        print(f"{parser.prog}: cannot write {where}: {error.strerror or error}", file=sys.stderr)
+        return 1
+
+
+def _write(args: argparse.Namespace) -> int:
+    """Write the sessions (or the benchmark session) `args` asks for."""
+    if args.out.exists() and not args.out.is_dir():
+        raise NotADirectoryError(errno.ENOTDIR, os.strerror(errno.ENOTDIR), str(args.out))
     args.out.mkdir(parents=True, exist_ok=True)
     if args.transactions is not None:
-        if args.transactions < 0:
-            parser.error("--transactions must be 0 or more")
         records = generate_session(args.transactions, args.seed)
         paths = write_capture(records, args.out / f"bench-{args.transactions}-{args.seed}")
         print(f"{paths[0]}: {len(records)} frames", file=sys.stderr)
