@@ -23,7 +23,7 @@ from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
 from dissector.framing.rules import spans_a_frame
 from dissector.model import Chunk, Frame, Item
-from dissector.protocol.crc import crc16, lrc
+from dissector.protocol.crc import crc16, crc_bytes, lrc
 from dissector.sources.notation import Notation, NotationError
 
 
@@ -119,7 +119,10 @@ def _one_frame(data: bytes, ascii: bool = False) -> bool:
     framer = AsciiFramer() if ascii else RtuFramer()
     items = framer.feed(Chunk(data, None, True)) + framer.finish()
     whole = len(items) == 1 and isinstance(items[0], Frame) and items[0].crc_ok and items[0].length == len(data)
-    return whole and (ascii or spans_a_frame(data))
+    if whole and ascii:  # (a line with a good LRC is a frame whatever its length: the RTU frame of its bytes' shape)
+        adu = bytes.fromhex(data[1:].rstrip(b"\r\n").decode("ascii"))[:-1]
+        data = adu + crc_bytes(adu)
+    return whole and spans_a_frame(data)
 
 
 def _good_frames(data: bytes) -> bool:

@@ -223,10 +223,12 @@ local function ascii_candidate(s, at, length, items, reason, at_end)
   local slave, code = bin[0], bin[1]
   local received, expected = bin[count - 1], lrc(bin, count - 1)
   local kind = classify_ascii(s, bin, count - 1)
-  if kind == nil then
-    local check = received == expected and TEXT.lrc_ok or format(TEXTS.lrc_wrong.format, received, expected)
+  if kind == nil and received ~= expected then
+    local check = format(TEXTS.lrc_wrong.format, received, expected)
     return reject(s, at, length, format(TEXTS.no_layout.format, code, check), items)
   end
+  -- A line with a good LRC is a frame whatever its length: ':' and its end bound it (ascii.py _candidate)
+  if kind == nil then kind = code >= 128 and EXCEPTION or (awaited(s, bin, 0, count) and RESPONSE or REQUEST) end
   local offset = s.base + at
   local frame = {
     kind = kind, offset = offset, length = length, slave = slave, fn = code % 128,

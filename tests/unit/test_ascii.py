@@ -96,7 +96,7 @@ def test_noise_cases_each_with_its_reason() -> None:
         good,
         b":0C0320D000030\r\n",  # odd number of digits
         b":0C0320D00003FE\n",  # LF without CR: a frame, with a warning
-        ascii_frame("0C 03 20 D0"),  # a read request needs 4 data bytes
+        ascii_frame("0C 03 20 D0"),  # too short for the answer awaited: a frame all the same, its LRC good
         ascii_frame("F8 03 20 D0 00 03"),  # slave 248: a frame (the decoder warns: reserved)
         ascii_frame("0C 03 20 D0 00 03", check=0),
         b":0C03",  # the capture ends
@@ -110,7 +110,7 @@ def test_noise_cases_each_with_its_reason() -> None:
         (offsets[2], good, Kind.REQUEST, 12, 3, 0xFE, 0xFE, 0.0),
         (offsets[3], parts[3], "noise", "ASCII frame is not made of hex pairs", 0.0),
         (offsets[4], parts[4], Kind.REQUEST, 12, 3, 0xFE, 0xFE, 0.0),
-        (offsets[5], parts[5], "noise", "no Modbus layout fits function 3 (LRC ok)", 0.0),
+        (offsets[5], parts[5], Kind.RESPONSE, 12, 3, 0x01, 0x01, 0.0),
         (offsets[6], parts[6], Kind.REQUEST, 248, 3, 0x12, 0x12, 0.0),
         (offsets[7], parts[7], Kind.REQUEST, 12, 3, 0x00, 0xFE, 0.0),
         # (the answer awaited to the request before, as far as it came: tests/unit/test_ascii_line_ends.py)
