@@ -3403,7 +3403,7 @@ local RULES = {["lift"]={["read_request"]={["start"]="start",["quantity"]="quant
   [3] = true,
   [10] = true,
   [20] = true,
-},["byte_text"]={[0]="\\x00",[1]="\\x01",[2]="\\x02",[3]="\\x03",[4]="\\x04",[5]="\\x05",[6]="\\x06",[7]="\\x07",[8]="\\x08",[9]="\\t",[10]="\\n",[11]="\\x0b",[12]="\\x0c",[13]="\\r",[14]="\\x0e",[15]="\\x0f",[16]="\\x10",[17]="\\x11",[18]="\\x12",[19]="\\x13",[20]="\\x14",[21]="\\x15",[22]="\\x16",[23]="\\x17",[24]="\\x18",[25]="\\x19",[26]="\\x1a",[27]="\\x1b",[28]="\\x1c",[29]="\\x1d",[30]="\\x1e",[31]="\\x1f",[32]=" ",[33]="!",[34]="\"",[35]="#",[36]="$",[37]="%",[38]="&",[39]="\\'",[40]="(",[41]=")",[42]="*",[43]="+",[44]=",",[45]="-",[46]=".",[47]="/",[48]="0",[49]="1",[50]="2",[51]="3",[52]="4",[53]="5",[54]="6",[55]="7",[56]="8",[57]="9",[58]=":",[59]=";",[60]="<",[61]="=",[62]=">",[63]="?",[64]="@",[65]="A",[66]="B",[67]="C",[68]="D",[69]="E",[70]="F",[71]="G",[72]="H",[73]="I",[74]="J",[75]="K",[76]="L",[77]="M",[78]="N",[79]="O",[80]="P",[81]="Q",[82]="R",[83]="S",[84]="T",[85]="U",[86]="V",[87]="W",[88]="X",[89]="Y",[90]="Z",[91]="[",[92]="\\\\",[93]="]",[94]="^",[95]="_",[96]="`",[97]="a",[98]="b",[99]="c",[100]="d",[101]="e",[102]="f",[103]="g",[104]="h",[105]="i",[106]="j",[107]="k",[108]="l",[109]="m",[110]="n",[111]="o",[112]="p",[113]="q",[114]="r",[115]="s",[116]="t",[117]="u",[118]="v",[119]="w",[120]="x",[121]="y",[122]="z",[123]="{",[124]="|",[125]="}",[126]="~",[127]="\\x7f",[128]="\\x80",[129]="\\x81",[130]="\\x82",[131]="\\x83",[132]="\\x84",[133]="\\x85",[134]="\\x86",[135]="\\x87",[136]="\\x88",[137]="\\x89",[138]="\\x8a",[139]="\\x8b",[140]="\\x8c",[141]="\\x8d",[142]="\\x8e",[143]="\\x8f",[144]="\\x90",[145]="\\x91",[146]="\\x92",[147]="\\x93",[148]="\\x94",[149]="\\x95",[150]="\\x96",[151]="\\x97",[152]="\\x98",[153]="\\x99",[154]="\\x9a",[155]="\\x9b",[156]="\\x9c",[157]="\\x9d",[158]="\\x9e",[159]="\\x9f",[160]="\\xa0",[161]="\\xa1",[162]="\\xa2",[163]="\\xa3",[164]="\\xa4",[165]="\\xa5",[166]="\\xa6",[167]="\\xa7",[168]="\\xa8",[169]="\\xa9",[170]="\\xaa",[171]="\\xab",[172]="\\xac",[173]="\\xad",[174]="\\xae",[175]="\\xaf",[176]="\\xb0",[177]="\\xb1",[178]="\\xb2",[179]="\\xb3",[180]="\\xb4",[181]="\\xb5",[182]="\\xb6",[183]="\\xb7",[184]="\\xb8",[185]="\\xb9",[186]="\\xba",[187]="\\xbb",[188]="\\xbc",[189]="\\xbd",[190]="\\xbe",[191]="\\xbf",[192]="\\xc0",[193]="\\xc1",[194]="\\xc2",[195]="\\xc3",[196]="\\xc4",[197]="\\xc5",[198]="\\xc6",[199]="\\xc7",[200]="\\xc8",[201]="\\xc9",[202]="\\xca",[203]="\\xcb",[204]="\\xcc",[205]="\\xcd",[206]="\\xce",[207]="\\xcf",[208]="\\xd0",[209]="\\xd1",[210]="\\xd2",[211]="\\xd3",[212]="\\xd4",[213]="\\xd5",[214]="\\xd6",[215]="\\xd7",[216]="\\xd8",[217]="\\xd9",[218]="\\xda",[219]="\\xdb",[220]="\\xdc",[221]="\\xdd",[222]="\\xde",[223]="\\xdf",[224]="\\xe0",[225]="\\xe1",[226]="\\xe2",[227]="\\xe3",[228]="\\xe4",[229]="\\xe5",[230]="\\xe6",[231]="\\xe7",[232]="\\xe8",[233]="\\xe9",[234]="\\xea",[235]="\\xeb",[236]="\\xec",[237]="\\xed",[238]="\\xee",[239]="\\xef",[240]="\\xf0",[241]="\\xf1",[242]="\\xf2",[243]="\\xf3",[244]="\\xf4",[245]="\\xf5",[246]="\\xf6",[247]="\\xf7",[248]="\\xf8",[249]="\\xf9",[250]="\\xfa",[251]="\\xfb",[252]="\\xfc",[253]="\\xfd",[254]="\\xfe",[255]="\\xff"},["mandatory_objects"]="VendorName, ProductCode, MajorMinorRevision"}
+},["byte_text"]={[0]="\\x00",[1]="\\x01",[2]="\\x02",[3]="\\x03",[4]="\\x04",[5]="\\x05",[6]="\\x06",[7]="\\x07",[8]="\\x08",[9]="\\t",[10]="\\n",[11]="\\x0b",[12]="\\x0c",[13]="\\r",[14]="\\x0e",[15]="\\x0f",[16]="\\x10",[17]="\\x11",[18]="\\x12",[19]="\\x13",[20]="\\x14",[21]="\\x15",[22]="\\x16",[23]="\\x17",[24]="\\x18",[25]="\\x19",[26]="\\x1a",[27]="\\x1b",[28]="\\x1c",[29]="\\x1d",[30]="\\x1e",[31]="\\x1f",[32]=" ",[33]="!",[34]="\"",[35]="#",[36]="$",[37]="%",[38]="&",[39]="\\'",[40]="(",[41]=")",[42]="*",[43]="+",[44]=",",[45]="-",[46]=".",[47]="/",[48]="0",[49]="1",[50]="2",[51]="3",[52]="4",[53]="5",[54]="6",[55]="7",[56]="8",[57]="9",[58]=":",[59]=";",[60]="<",[61]="=",[62]=">",[63]="?",[64]="@",[65]="A",[66]="B",[67]="C",[68]="D",[69]="E",[70]="F",[71]="G",[72]="H",[73]="I",[74]="J",[75]="K",[76]="L",[77]="M",[78]="N",[79]="O",[80]="P",[81]="Q",[82]="R",[83]="S",[84]="T",[85]="U",[86]="V",[87]="W",[88]="X",[89]="Y",[90]="Z",[91]="[",[92]="\\\\",[93]="]",[94]="^",[95]="_",[96]="`",[97]="a",[98]="b",[99]="c",[100]="d",[101]="e",[102]="f",[103]="g",[104]="h",[105]="i",[106]="j",[107]="k",[108]="l",[109]="m",[110]="n",[111]="o",[112]="p",[113]="q",[114]="r",[115]="s",[116]="t",[117]="u",[118]="v",[119]="w",[120]="x",[121]="y",[122]="z",[123]="{",[124]="|",[125]="}",[126]="~",[127]="\\x7f",[128]="\\x80",[129]="\\x81",[130]="\\x82",[131]="\\x83",[132]="\\x84",[133]="\\x85",[134]="\\x86",[135]="\\x87",[136]="\\x88",[137]="\\x89",[138]="\\x8a",[139]="\\x8b",[140]="\\x8c",[141]="\\x8d",[142]="\\x8e",[143]="\\x8f",[144]="\\x90",[145]="\\x91",[146]="\\x92",[147]="\\x93",[148]="\\x94",[149]="\\x95",[150]="\\x96",[151]="\\x97",[152]="\\x98",[153]="\\x99",[154]="\\x9a",[155]="\\x9b",[156]="\\x9c",[157]="\\x9d",[158]="\\x9e",[159]="\\x9f",[160]="\\xa0",[161]="\\xa1",[162]="\\xa2",[163]="\\xa3",[164]="\\xa4",[165]="\\xa5",[166]="\\xa6",[167]="\\xa7",[168]="\\xa8",[169]="\\xa9",[170]="\\xaa",[171]="\\xab",[172]="\\xac",[173]="\\xad",[174]="\\xae",[175]="\\xaf",[176]="\\xb0",[177]="\\xb1",[178]="\\xb2",[179]="\\xb3",[180]="\\xb4",[181]="\\xb5",[182]="\\xb6",[183]="\\xb7",[184]="\\xb8",[185]="\\xb9",[186]="\\xba",[187]="\\xbb",[188]="\\xbc",[189]="\\xbd",[190]="\\xbe",[191]="\\xbf",[192]="\\xc0",[193]="\\xc1",[194]="\\xc2",[195]="\\xc3",[196]="\\xc4",[197]="\\xc5",[198]="\\xc6",[199]="\\xc7",[200]="\\xc8",[201]="\\xc9",[202]="\\xca",[203]="\\xcb",[204]="\\xcc",[205]="\\xcd",[206]="\\xce",[207]="\\xcf",[208]="\\xd0",[209]="\\xd1",[210]="\\xd2",[211]="\\xd3",[212]="\\xd4",[213]="\\xd5",[214]="\\xd6",[215]="\\xd7",[216]="\\xd8",[217]="\\xd9",[218]="\\xda",[219]="\\xdb",[220]="\\xdc",[221]="\\xdd",[222]="\\xde",[223]="\\xdf",[224]="\\xe0",[225]="\\xe1",[226]="\\xe2",[227]="\\xe3",[228]="\\xe4",[229]="\\xe5",[230]="\\xe6",[231]="\\xe7",[232]="\\xe8",[233]="\\xe9",[234]="\\xea",[235]="\\xeb",[236]="\\xec",[237]="\\xed",[238]="\\xee",[239]="\\xef",[240]="\\xf0",[241]="\\xf1",[242]="\\xf2",[243]="\\xf3",[244]="\\xf4",[245]="\\xf5",[246]="\\xf6",[247]="\\xf7",[248]="\\xf8",[249]="\\xf9",[250]="\\xfa",[251]="\\xfb",[252]="\\xfc",[253]="\\xfd",[254]="\\xfe",[255]="\\xff"},["mandatory_objects"]="VendorName, ProductCode, MajorMinorRevision",["answers"]={[1]={4,0,0,5},[2]={4,0,0,5},[3]={4,2,0,5},[4]={4,2,0,5},[23]={4,2,0,5}}}
 -- END RULES
 DATA.rules = RULES
 end
@@ -4822,14 +4822,7 @@ local function crc_ok_at(b, i, length)
     key = pattern_of(b, i, length)
   end
   if key == nil then return crc_ok_run(b, i, length) end
-  key = key * 512 + length
-  local known = periodic[key]
-  if known == nil then
-    known = crc_ok_run(b, i, length)
-    if periodic_kept >= PERIODIC_KEEP then periodic, periodic_kept = {}, 0 end
-    periodic[key], periodic_kept = known, periodic_kept + 1
-  end
-  return known
+  return kept_for(key * 512 + length, crc_ok_run, b, i, length)
 end
 M.concat, M.crc16, M.crc_lengths, M.crc_ok_at, M.crc_scan = concat, crc16, crc_lengths, crc_ok_at, crc_scan
 M.crc_step, M.crc_string_ok, M.floor, M.format, M.made_once = crc_step, crc_string_ok, floor, format, made_once
@@ -5020,9 +5013,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, ECHO_CODES, FRAMING, MAX_ADU, MAX_SLAVE = DATA, ECHO_CODES, FRAMING, MAX_ADU, MAX_SLAVE
 local MIN_ADU, NEED, NOISE, NOISE_ITEM_MAX, REQUEST = MIN_ADU, NEED, NOISE, NOISE_ITEM_MAX, REQUEST
-local RESPONSE, await_echo, counted, crc_string_ok = RESPONSE, await_echo, counted, crc_string_ok
-local data_bytes, format, ipairs, math, pairs, string = data_bytes, format, ipairs, math, pairs, string
-local table, type = table, type
+local RESPONSE, await_echo, crc_string_ok, data_bytes = RESPONSE, await_echo, crc_string_ok, data_bytes
+local format, ipairs, math, string, table = format, ipairs, math, string, table
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request): a record that is the usual answer to the
@@ -5273,22 +5265,9 @@ local function awaits_answer(frame)
 end
 
 -- The length of the normal answer a request implies, where the protocol table fixes it by the request
--- (framing/answers.py): an answer counted by a byte count (one byte) whose lifting rule has that count follow the
--- quantity the request asks (`request.quantity`, FC1..4 and FC23's reads). By code: the request's quantity word's
--- place in the frame, the count's unit and plus, the answer's length besides its byte count.
-local ANSWERS = {}
-do
-  local lifts, by_code, places = DATA.rules.lift, DATA.rules.by_code, DATA.field_places
-  for code, answer in pairs(by_code.response) do
-    local count, request = answer.rule and lifts[answer.rule].count, by_code.request[code]
-    local asked = request and request.rule and lifts[request.rule].quantity
-    local counted = DATA.protocol.rules[code][2]
-    if count ~= nil and count.of == "request.quantity" and type(asked) == "string" and counted[1] == "counted"
-        and counted[4] == 1 then
-      ANSWERS[code] = { places[request.layout][asked].at, count.unit, count.plus, counted[3] }
-    end
-  end
-end
+-- (framing/answers.py ANSWERS, written out as DATA.rules.answers: FC1..4 and FC23's reads). By code: the request's
+-- quantity word's place in the frame, the count's unit and plus, the answer's length besides its byte count.
+local ANSWERS = DATA.rules.answers
 
 -- The length (CRC included) of the normal answer request `frame` implies (answers.py answer_length), nil: not
 -- known. The data a quantity asks: unit bytes an item, or bits 8 to a byte (unit 0: protocol/rules.py data_bytes).

@@ -19,6 +19,7 @@ from typing import Any
 from dissector.codegen import fields_lua
 from dissector.codegen.lua import lua_literal as scalar_literal
 from dissector.decode import fields
+from dissector.framing.answers import ANSWERS
 from dissector.model import Kind
 from dissector.protocol import table
 from dissector.protocol.printable import bytes_text
@@ -190,6 +191,9 @@ def rules_data() -> dict[str, Any]:
         # answer without any lacks (fields._MANDATORY_OBJECTS).
         "byte_text": {byte: bytes_text(bytes([byte])) for byte in range(256)},
         "mandatory_objects": fields._MANDATORY_OBJECTS,
+        # The normal answer's length a request implies, by code (framing/answers.py ANSWERS): where the request's
+        # quantity word is (from the slave byte), the count's unit and plus, the answer's length besides its count.
+        "answers": {code: [offset + 2, count.unit, count.plus, extra] for code, (offset, extra, count) in ANSWERS.items()},
     }
 
 

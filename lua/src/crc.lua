@@ -272,12 +272,5 @@ local function crc_ok_at(b, i, length)
     key = pattern_of(b, i, length)
   end
   if key == nil then return crc_ok_run(b, i, length) end
-  key = key * 512 + length
-  local known = periodic[key]
-  if known == nil then
-    known = crc_ok_run(b, i, length)
-    if periodic_kept >= PERIODIC_KEEP then periodic, periodic_kept = {}, 0 end
-    periodic[key], periodic_kept = known, periodic_kept + 1
-  end
-  return known
+  return kept_for(key * 512 + length, crc_ok_run, b, i, length)
 end

@@ -253,22 +253,9 @@ local function awaits_answer(frame)
 end
 
 -- The length of the normal answer a request implies, where the protocol table fixes it by the request
--- (framing/answers.py): an answer counted by a byte count (one byte) whose lifting rule has that count follow the
--- quantity the request asks (`request.quantity`, FC1..4 and FC23's reads). By code: the request's quantity word's
--- place in the frame, the count's unit and plus, the answer's length besides its byte count.
-local ANSWERS = {}
-do
-  local lifts, by_code, places = DATA.rules.lift, DATA.rules.by_code, DATA.field_places
-  for code, answer in pairs(by_code.response) do
-    local count, request = answer.rule and lifts[answer.rule].count, by_code.request[code]
-    local asked = request and request.rule and lifts[request.rule].quantity
-    local counted = DATA.protocol.rules[code][2]
-    if count ~= nil and count.of == "request.quantity" and type(asked) == "string" and counted[1] == "counted"
-        and counted[4] == 1 then
-      ANSWERS[code] = { places[request.layout][asked].at, count.unit, count.plus, counted[3] }
-    end
-  end
-end
+-- (framing/answers.py ANSWERS, written out as DATA.rules.answers: FC1..4 and FC23's reads). By code: the request's
+-- quantity word's place in the frame, the count's unit and plus, the answer's length besides its byte count.
+local ANSWERS = DATA.rules.answers
 
 -- The length (CRC included) of the normal answer request `frame` implies (answers.py answer_length), nil: not
 -- known. The data a quantity asks: unit bytes an item, or bits 8 to a byte (unit 0: protocol/rules.py data_bytes).
