@@ -5483,7 +5483,7 @@ local function cut_stream(s, bytes, time, part, number, items)
   s.open[#s.open + 1], s.last = record, record
   return record
 end
-M.GLITCH, M.REPEAT_PROBE, M.TOO_SHORT, M.add_noise = GLITCH, REPEAT_PROBE, TOO_SHORT, add_noise
+M.GLITCH, M.NS, M.REPEAT_PROBE, M.TOO_SHORT, M.add_noise = GLITCH, NS, REPEAT_PROBE, TOO_SHORT, add_noise
 M.add_skipped, M.await_answer, M.awaits_answer = add_skipped, await_answer, awaits_answer
 M.boundary_at, M.cut_reason, M.cut_stream, M.drop_first = boundary_at, cut_reason, cut_stream, drop_first
 M.emit, M.expect_after, M.first_above, M.first_after = emit, expect_after, first_above, first_after
@@ -6918,14 +6918,13 @@ package.preload["vw3.pairing"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pairing"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer
+local DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer
 local next, note, part_reason, release_run, say, string_of = next, note, part_reason, release_run, say, string_of
 local warn = warn
 local PLAIN = DATA.plain_texts -- (the catalogue's texts without parameters: unmatched, never_answered, ...)
 local ECHO = DATA.pairing.echo
--- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once, as
--- vw3-decode's Stamps subtract (model.py Stamp.__sub__): the same doubles, the same digits in the texts.
-local NS = 1e9
+-- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once by NS
+-- (vw3.stream's), as vw3-decode's Stamps subtract (model.py Stamp.__sub__): the same doubles, the same digits.
 -- FC8's sub-functions that enter and leave Listen Only Mode (Application Protocol 6.8.1).
 local FC8_CODE, SUB_LISTEN_ONLY, SUB_RESTART = 8, 4, 1
 
@@ -6966,6 +6965,11 @@ local function leave(st, slave)
   end
 end
 
+-- The texts' values for a slave in the mode since the 08/04 `since` (listen_only, listen_only_answered, ...).
+local function listen_values(slave, since)
+  return { slave = slave, number = since.number, how = since.slave == 0 and PLAIN.listen_only_broadcast or "" }
+end
+
 -- Follows the mode through request f; returns the 08/04 its slave was in the mode since (nil: not in it) and
 -- f's sub-function (nil: not an intact FC8 request, which no slave acts on).
 -- A slave taken to be in the mode answered (pairing.py _heard): it is not in it; its request's note goes.
@@ -6974,7 +6978,7 @@ local function heard(st, request, answer)
   local since = listening_since(st, slave)
   if not since then return end -- (the 08/01 that ended the mode: already out of it)
   leave(st, slave)
-  local values = { slave = slave, number = since.number, how = since.slave == 0 and PLAIN.listen_only_broadcast or "" }
+  local values = listen_values(slave, since)
   local said, notes, kept = say("listen_only", values), request.notes or {}, {}
   for index = 1, #notes do
     if notes[index] ~= said then kept[#kept + 1] = notes[index] end
@@ -7093,12 +7097,16 @@ local function answered(st, f)
   return awaits_answer(f) and listening_since(st, f.slave) == nil
 end
 
+-- The timeout rule: is `time` later than the timeout after request `pending`'s?
+local function timed_out(st, pending, time)
+  return st.timeout ~= nil and time ~= nil and pending.time ~= nil and (time - pending.time) / NS > st.timeout
+end
+
 local function pair(st, f)
   local pending = st.pending
   local timeout = st.timeout
   local late = nil
-  if pending ~= nil and timeout ~= nil and f.time ~= nil and pending.time ~= nil
-    and (f.time - pending.time) / NS > timeout then
+  if pending ~= nil and timed_out(st, pending, f.time) then
     unanswered(st, pending)
     late, pending = pending, nil
   end
@@ -7141,8 +7149,7 @@ local function pair(st, f)
     else
       st.broadcast = nil
       if since ~= nil then
-        note(f, say(sub == SUB_RESTART and "listen_only_ends" or "listen_only",
-          { slave = f.slave, number = since.number, how = since.slave == 0 and PLAIN.listen_only_broadcast or "" }))
+        note(f, say(sub == SUB_RESTART and "listen_only_ends" or "listen_only", listen_values(f.slave, since)))
         f.answerless, f.unheard = true, true
       elseif not awaits_answer(f) then
         note(f, PLAIN.never_answered)
@@ -7189,11 +7196,8 @@ end
 -- (pairing.py _answer_in_part, ANSWER_IN_PART). The request is answered, its note names the item, whose reason
 -- names the request (`...; slave 2, function 3; the answer to #1): its CRC cannot be checked`).
 local function pair_part(st, item)
-  local pending, timeout = st.pending, st.timeout
-  if pending == nil or pending.answerless then return end
-  if timeout ~= nil and item.time ~= nil and pending.time ~= nil and (item.time - pending.time) / NS > timeout then
-    return
-  end
+  local pending = st.pending
+  if pending == nil or pending.answerless or timed_out(st, pending, item.time) then return end
   local part = item.part
   if part.slave ~= pending.slave or (part.fn ~= nil and part.fn % 128 ~= pending.fn) then return end
   note(pending, "answer captured in part in #" .. item.number)
@@ -10470,7 +10474,7 @@ package.preload["vw3.clock"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.clock"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, NSTime, floor, lane, math, rawget, type = DATA, NSTime, floor, lane, math, rawget, type
+local DATA, NS, NSTime, floor, lane, math, rawget, type = DATA, NS, NSTime, floor, lane, math, rawget, type
 
 -- Wireshark's functions behind pinfo's fields, TreeItem.text and tvb:raw(), called directly: wslua reaches a
 -- field through an __index function that looks the name up first (pinfo.port_type: some 1,120 machine
@@ -10506,8 +10510,7 @@ local tvb_raw, tvb_len, tvb_reported_len = tvb_method("raw"), tvb_method("len"),
 -- before) are small: their nanoseconds are exact. The clock is the capture's: a new one with each capture's
 -- serial stream (`state`, made by proto.init); clock.times: by number (false: none), the times the usual case
 -- below does not give (the first record's, a new reference's, ...) and those a stand-in reads again.
-local NS = 1e9
-local clock = {}
+local clock = {} -- (NS: vw3.stream's, nanoseconds a second)
 local function capture_clock(abs)
   if clock.capture ~= state then clock = { capture = state, times = {}, nanos = false } end
   if clock.base == nil and abs ~= nil then clock.base = floor(abs) end
