@@ -8163,8 +8163,7 @@ end
 local function words_at(rows, address, index, count)
   local row = rows[address]
   if row ~= nil and row.words == 2 and index + 1 < count then return 2 end
-  local before = index > 0 and rows[(address + 0xFFFF) % 0x10000]
-  return before and before.words == 2 and 0 or 1
+  return index > 0 and rows_before(rows, address) and 0 or 1
 end
 
 -- The bits_depend rule under which the register at `address` (its map row `row`) is read with its plain
@@ -8244,7 +8243,7 @@ local function describe(device, f, reg, plain, status, words, second, labels)
       text = say("first_word", row)
     end
   elseif words == 0 then -- (a row of its own names a second word as any register, naming.py's loop)
-    named = rows[(address + 0xFFFF) % 0x10000]
+    named = rows_before(rows, address)
     text = say("second_word", named)
   else
     local before = rows_before(rows, address) -- (its first word is not in the frame: naming.name_second_alone)
@@ -10074,6 +10073,9 @@ local function register_title(reg)
   return concat(parts)
 end
 
+-- Where the frame's check starts in its byte table: RTU's CRC, 2 bytes; ASCII's LRC, 1 byte before CR LF.
+local function check_at(f) return f.ascii and floor((f.length - 3) / 2) - 1 or f.length - 2 end
+
 -- The frame's byte table for the display, from the tvb it is shown from (ASCII: the hex pairs decoded).
 local function frame_bytes(f, tvb)
   if f.ascii then -- (the hex pairs between the colon and CR LF, as the framer read them)
@@ -10446,8 +10448,7 @@ local function summary(f, tvb, st, device)
     if st == nil and device == nil and NAMING[fn] ~= nil and NAMING[fn][f.kind] then return nil end
     local b, base, last = f.b, f.bi, f.b and f.data_at + f.data_len - 1
     if b == nil and tvb ~= nil then
-      b, base, last = frame_bytes(f, tvb), 0, f.length - 3 -- (RTU: the CRC's two bytes after the data)
-      if f.ascii then last = floor((f.length - 3) / 2) - 2 end -- (ASCII: the LRC's byte)
+      b, base, last = frame_bytes(f, tvb), 0, check_at(f) - 1
     end
     if b ~= nil then
       local text = steps(f, b, base, last, st, device) -- (describe.info_text's rstrip: no space before none)
@@ -10457,14 +10458,14 @@ local function summary(f, tvb, st, device)
   if f.kind == EXCEPTION then return slave .. " " .. name .. " " .. kind .. tail end -- (its code said)
   local text = span_text(f)
   if text == "" and LAYOUT_OF[kind][fn] == nil then -- (a code with no describer: its data counted)
-    local size = f.ascii and floor((f.length - 3) / 2) - 3 or f.length - 4 -- (but slave, code and check)
+    local size = check_at(f) - 2 -- (but slave and code)
     text = count_text(size, "byte") .. " of data"
   end
   return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail
 end
 M.START_WORDS, M.add_pdu, M.add_register, M.add_said = START_WORDS, add_pdu, add_register, add_said
-M.add_text, M.count_text, M.frame_bytes, M.frame_range = add_text, count_text, frame_bytes, frame_range
-M.mask_register, M.summary, M.unseen = mask_register, summary, unseen
+M.add_text, M.check_at, M.count_text, M.frame_bytes = add_text, check_at, count_text, frame_bytes
+M.frame_range, M.mask_register, M.summary, M.unseen = frame_range, mask_register, summary, unseen
 end
 
 -- ---- vw3.clock: lua/src/clock.lua ----
@@ -10655,9 +10656,9 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local AUTO, ByteArray, DATA, DIAGNOSTICS, EXCEPTION = AUTO, ByteArray, DATA, DIAGNOSTICS, EXCEPTION
 local KIND_NUMBER, MASK_WRITES, NOISE, NO_INTERPRETATION = KIND_NUMBER, MASK_WRITES, NOISE, NO_INTERPRETATION
 local PLC_LABELS, REQUEST, START_WORDS, add_pdu = PLC_LABELS, REQUEST, START_WORDS, add_pdu
-local add_register, add_said, add_text, bit_at, concat = add_register, add_said, add_text, bit_at, concat
-local count_text, device_of, ended, ex, exception_name = count_text, device_of, ended, ex, exception_name
-local finish_safely, floor, format, frame_bytes = finish_safely, floor, format, frame_bytes
+local add_register, add_said, add_text, bit_at, check_at = add_register, add_said, add_text, bit_at, check_at
+local concat, count_text, device_of, ended, ex = concat, count_text, device_of, ended, ex
+local exception_name, finish_safely, format, frame_bytes = exception_name, finish_safely, format, frame_bytes
 local frame_range, function_name, inferred_registers = frame_range, function_name, inferred_registers
 local ipairs, keep_time, lane, math, pack, pairs, pf = ipairs, keep_time, lane, math, pack, pairs, pf
 local pinfo_cols, plc_base, proto, record_ns, register_view = pinfo_cols, plc_base, proto, record_ns, register_view
@@ -10734,8 +10735,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     if f.provisional then -- (vw3-decode -V's line)
       t:add(pf.provisional, whole, true):set_generated():set_text(DATA.render.provisional_line)
     end
-    crc_at = f.length - 2
-    if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
+    crc_at = check_at(f)
     local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)
     local crc = t:add(pf.crc, crc_range, f.crc)
     local expected = t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()
