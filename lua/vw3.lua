@@ -5461,7 +5461,7 @@ local function cut_stream(s, bytes, time, part, number, items)
   s.open[#s.open + 1], s.last = record, record
   return record
 end
-M.GLITCH, M.REPEAT_PROBE, M.TOO_SHORT, M.add_noise = GLITCH, REPEAT_PROBE, TOO_SHORT, add_noise
+M.GLITCH, M.NS, M.REPEAT_PROBE, M.TOO_SHORT, M.add_noise = GLITCH, NS, REPEAT_PROBE, TOO_SHORT, add_noise
 M.add_skipped, M.await_answer, M.awaits_answer = add_skipped, await_answer, awaits_answer
 M.boundary_at, M.cut_reason, M.cut_stream, M.drop_first = boundary_at, cut_reason, cut_stream, drop_first
 M.emit, M.expect_after, M.first_above, M.first_after = emit, expect_after, first_above, first_after
@@ -6898,14 +6898,13 @@ package.preload["vw3.pairing"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pairing"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer
+local DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer
 local next, note, part_reason, release_run, say, string_of = next, note, part_reason, release_run, say, string_of
 local warn = warn
 local PLAIN = DATA.plain_texts -- (the catalogue's texts without parameters: unmatched, never_answered, ...)
 local ECHO = DATA.pairing.echo
--- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once, as
--- vw3-decode's Stamps subtract (model.py Stamp.__sub__): the same doubles, the same digits in the texts.
-local NS = 1e9
+-- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once by NS
+-- (vw3.stream's), as vw3-decode's Stamps subtract (model.py Stamp.__sub__): the same doubles, the same digits.
 -- FC8's sub-functions that enter and leave Listen Only Mode (Application Protocol 6.8.1).
 local FC8_CODE, SUB_LISTEN_ONLY, SUB_RESTART = 8, 4, 1
 
@@ -6946,6 +6945,11 @@ local function leave(st, slave)
   end
 end
 
+-- The texts' values for a slave in the mode since the 08/04 `since` (listen_only, listen_only_answered, ...).
+local function listen_values(slave, since)
+  return { slave = slave, number = since.number, how = since.slave == 0 and PLAIN.listen_only_broadcast or "" }
+end
+
 -- Follows the mode through request f; returns the 08/04 its slave was in the mode since (nil: not in it) and
 -- f's sub-function (nil: not an intact FC8 request, which no slave acts on).
 -- A slave taken to be in the mode answered (pairing.py _heard): it is not in it; its request's note goes.
@@ -6954,7 +6958,7 @@ local function heard(st, request, answer)
   local since = listening_since(st, slave)
   if not since then return end -- (the 08/01 that ended the mode: already out of it)
   leave(st, slave)
-  local values = { slave = slave, number = since.number, how = since.slave == 0 and PLAIN.listen_only_broadcast or "" }
+  local values = listen_values(slave, since)
   local said, notes, kept = say("listen_only", values), request.notes or {}, {}
   for index = 1, #notes do
     if notes[index] ~= said then kept[#kept + 1] = notes[index] end
@@ -7073,12 +7077,16 @@ local function answered(st, f)
   return awaits_answer(f) and listening_since(st, f.slave) == nil
 end
 
+-- The timeout rule: is `time` later than the timeout after request `pending`'s?
+local function timed_out(st, pending, time)
+  return st.timeout ~= nil and time ~= nil and pending.time ~= nil and (time - pending.time) / NS > st.timeout
+end
+
 local function pair(st, f)
   local pending = st.pending
   local timeout = st.timeout
   local late = nil
-  if pending ~= nil and timeout ~= nil and f.time ~= nil and pending.time ~= nil
-    and (f.time - pending.time) / NS > timeout then
+  if pending ~= nil and timed_out(st, pending, f.time) then
     unanswered(st, pending)
     late, pending = pending, nil
   end
@@ -7121,8 +7129,7 @@ local function pair(st, f)
     else
       st.broadcast = nil
       if since ~= nil then
-        note(f, say(sub == SUB_RESTART and "listen_only_ends" or "listen_only",
-          { slave = f.slave, number = since.number, how = since.slave == 0 and PLAIN.listen_only_broadcast or "" }))
+        note(f, say(sub == SUB_RESTART and "listen_only_ends" or "listen_only", listen_values(f.slave, since)))
         f.answerless, f.unheard = true, true
       elseif not awaits_answer(f) then
         note(f, PLAIN.never_answered)
@@ -7169,11 +7176,8 @@ end
 -- (pairing.py _answer_in_part, ANSWER_IN_PART). The request is answered, its note names the item, whose reason
 -- names the request (`...; slave 2, function 3; the answer to #1): its CRC cannot be checked`).
 local function pair_part(st, item)
-  local pending, timeout = st.pending, st.timeout
-  if pending == nil or pending.answerless then return end
-  if timeout ~= nil and item.time ~= nil and pending.time ~= nil and (item.time - pending.time) / NS > timeout then
-    return
-  end
+  local pending = st.pending
+  if pending == nil or pending.answerless or timed_out(st, pending, item.time) then return end
   local part = item.part
   if part.slave ~= pending.slave or (part.fn ~= nil and part.fn % 128 ~= pending.fn) then return end
   note(pending, "answer captured in part in #" .. item.number)
@@ -8139,8 +8143,7 @@ end
 local function words_at(rows, address, index, count)
   local row = rows[address]
   if row ~= nil and row.words == 2 and index + 1 < count then return 2 end
-  local before = index > 0 and rows[(address + 0xFFFF) % 0x10000]
-  return before and before.words == 2 and 0 or 1
+  return index > 0 and rows_before(rows, address) and 0 or 1
 end
 
 -- The bits_depend rule under which the register at `address` (its map row `row`) is read with its plain
@@ -8220,7 +8223,7 @@ local function describe(device, f, reg, plain, status, words, second, labels)
       text = say("first_word", row)
     end
   elseif words == 0 then -- (a row of its own names a second word as any register, naming.py's loop)
-    named = rows[(address + 0xFFFF) % 0x10000]
+    named = rows_before(rows, address)
     text = say("second_word", named)
   else
     local before = rows_before(rows, address) -- (its first word is not in the frame: naming.name_second_alone)
@@ -8952,7 +8955,7 @@ local function annotate_with(st, f, b, device)
   end
   -- (FC8 is the only code with a sub-function; its number tested first: a key most frames lack costs more to
   -- look up, some 800 instructions a record on the plant mix under callgrind)
-  if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
+  if f.subfunction ~= nil then diagnostics_note(f, device, b) end -- (set by the diagnostics handler alone)
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
 end
 
@@ -10050,6 +10053,9 @@ local function register_title(reg)
   return concat(parts)
 end
 
+-- Where the frame's check starts in its byte table: RTU's CRC, 2 bytes; ASCII's LRC, 1 byte before CR LF.
+local function check_at(f) return f.ascii and floor((f.length - 3) / 2) - 1 or f.length - 2 end
+
 -- The frame's byte table for the display, from the tvb it is shown from (ASCII: the hex pairs decoded).
 local function frame_bytes(f, tvb)
   if f.ascii then -- (the hex pairs between the colon and CR LF, as the framer read them)
@@ -10422,8 +10428,7 @@ local function summary(f, tvb, st, device)
     if st == nil and device == nil and NAMING[fn] ~= nil and NAMING[fn][f.kind] then return nil end
     local b, base, last = f.b, f.bi, f.b and f.data_at + f.data_len - 1
     if b == nil and tvb ~= nil then
-      b, base, last = frame_bytes(f, tvb), 0, f.length - 3 -- (RTU: the CRC's two bytes after the data)
-      if f.ascii then last = floor((f.length - 3) / 2) - 2 end -- (ASCII: the LRC's byte)
+      b, base, last = frame_bytes(f, tvb), 0, check_at(f) - 1
     end
     if b ~= nil then
       local text = steps(f, b, base, last, st, device) -- (describe.info_text's rstrip: no space before none)
@@ -10433,14 +10438,14 @@ local function summary(f, tvb, st, device)
   if f.kind == EXCEPTION then return slave .. " " .. name .. " " .. kind .. tail end -- (its code said)
   local text = span_text(f)
   if text == "" and LAYOUT_OF[kind][fn] == nil then -- (a code with no describer: its data counted)
-    local size = f.ascii and floor((f.length - 3) / 2) - 3 or f.length - 4 -- (but slave, code and check)
+    local size = check_at(f) - 2 -- (but slave and code)
     text = count_text(size, "byte") .. " of data"
   end
   return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail
 end
 M.START_WORDS, M.add_pdu, M.add_register, M.add_said = START_WORDS, add_pdu, add_register, add_said
-M.add_text, M.count_text, M.frame_bytes, M.frame_range = add_text, count_text, frame_bytes, frame_range
-M.mask_register, M.summary, M.unseen = mask_register, summary, unseen
+M.add_text, M.check_at, M.count_text, M.frame_bytes = add_text, check_at, count_text, frame_bytes
+M.frame_range, M.mask_register, M.summary, M.unseen = frame_range, mask_register, summary, unseen
 end
 
 -- ---- vw3.clock: lua/src/clock.lua ----
@@ -10450,7 +10455,7 @@ package.preload["vw3.clock"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.clock"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, NSTime, floor, lane, math, rawget, type = DATA, NSTime, floor, lane, math, rawget, type
+local DATA, NS, NSTime, floor, lane, math, rawget, type = DATA, NS, NSTime, floor, lane, math, rawget, type
 
 -- Wireshark's functions behind pinfo's fields, TreeItem.text and tvb:raw(), called directly: wslua reaches a
 -- field through an __index function that looks the name up first (pinfo.port_type: some 1,120 machine
@@ -10486,8 +10491,7 @@ local tvb_raw, tvb_len, tvb_reported_len = tvb_method("raw"), tvb_method("len"),
 -- before) are small: their nanoseconds are exact. The clock is the capture's: a new one with each capture's
 -- serial stream (`state`, made by proto.init); clock.times: by number (false: none), the times the usual case
 -- below does not give (the first record's, a new reference's, ...) and those a stand-in reads again.
-local NS = 1e9
-local clock = {}
+local clock = {} -- (NS: vw3.stream's, nanoseconds a second)
 local function capture_clock(abs)
   if clock.capture ~= state then clock = { capture = state, times = {}, nanos = false } end
   if clock.base == nil and abs ~= nil then clock.base = floor(abs) end
@@ -10632,9 +10636,9 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local AUTO, ByteArray, DATA, DIAGNOSTICS, EXCEPTION = AUTO, ByteArray, DATA, DIAGNOSTICS, EXCEPTION
 local KIND_NUMBER, MASK_WRITES, NOISE, NO_INTERPRETATION = KIND_NUMBER, MASK_WRITES, NOISE, NO_INTERPRETATION
 local PLC_LABELS, REQUEST, START_WORDS, add_pdu = PLC_LABELS, REQUEST, START_WORDS, add_pdu
-local add_register, add_said, add_text, bit_at, concat = add_register, add_said, add_text, bit_at, concat
-local count_text, device_of, ended, ex, exception_name = count_text, device_of, ended, ex, exception_name
-local finish_safely, floor, format, frame_bytes = finish_safely, floor, format, frame_bytes
+local add_register, add_said, add_text, bit_at, check_at = add_register, add_said, add_text, bit_at, check_at
+local concat, count_text, device_of, ended, ex = concat, count_text, device_of, ended, ex
+local exception_name, finish_safely, format, frame_bytes = exception_name, finish_safely, format, frame_bytes
 local frame_range, function_name, inferred_registers = frame_range, function_name, inferred_registers
 local ipairs, keep_time, lane, math, pack, pairs, pf = ipairs, keep_time, lane, math, pack, pairs, pf
 local pinfo_cols, plc_base, proto, record_ns, register_view = pinfo_cols, plc_base, proto, record_ns, register_view
@@ -10711,8 +10715,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     if f.provisional then -- (vw3-decode -V's line)
       t:add(pf.provisional, whole, true):set_generated():set_text(DATA.render.provisional_line)
     end
-    crc_at = f.length - 2
-    if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
+    crc_at = check_at(f)
     local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)
     local crc = t:add(pf.crc, crc_range, f.crc)
     local expected = t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()

@@ -44,7 +44,7 @@ local function annotate_with(st, f, b, device)
   end
   -- (FC8 is the only code with a sub-function; its number tested first: a key most frames lack costs more to
   -- look up, some 800 instructions a record on the plant mix under callgrind)
-  if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
+  if f.subfunction ~= nil then diagnostics_note(f, device, b) end -- (set by the diagnostics handler alone)
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
 end
 

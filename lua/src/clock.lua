@@ -38,8 +38,7 @@ local tvb_raw, tvb_len, tvb_reported_len = tvb_method("raw"), tvb_method("len"),
 -- before) are small: their nanoseconds are exact. The clock is the capture's: a new one with each capture's
 -- serial stream (`state`, made by proto.init); clock.times: by number (false: none), the times the usual case
 -- below does not give (the first record's, a new reference's, ...) and those a stand-in reads again.
-local NS = 1e9
-local clock = {}
+local clock = {} -- (NS: vw3.stream's, nanoseconds a second)
 local function capture_clock(abs)
   if clock.capture ~= state then clock = { capture = state, times = {}, nanos = false } end
   if clock.base == nil and abs ~= nil then clock.base = floor(abs) end

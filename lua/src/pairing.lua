@@ -5,9 +5,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local PLAIN = DATA.plain_texts -- (the catalogue's texts without parameters: unmatched, never_answered, ...)
 local ECHO = DATA.pairing.echo
--- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once, as
--- vw3-decode's Stamps subtract (model.py Stamp.__sub__): the same doubles, the same digits in the texts.
-local NS = 1e9
+-- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once by NS
+-- (vw3.stream's), as vw3-decode's Stamps subtract (model.py Stamp.__sub__): the same doubles, the same digits.
 -- FC8's sub-functions that enter and leave Listen Only Mode (Application Protocol 6.8.1).
 local FC8_CODE, SUB_LISTEN_ONLY, SUB_RESTART = 8, 4, 1
 
@@ -48,6 +47,11 @@ local function leave(st, slave)
   end
 end
 
+-- The texts' values for a slave in the mode since the 08/04 `since` (listen_only, listen_only_answered, ...).
+local function listen_values(slave, since)
+  return { slave = slave, number = since.number, how = since.slave == 0 and PLAIN.listen_only_broadcast or "" }
+end
+
 -- Follows the mode through request f; returns the 08/04 its slave was in the mode since (nil: not in it) and
 -- f's sub-function (nil: not an intact FC8 request, which no slave acts on).
 -- A slave taken to be in the mode answered (pairing.py _heard): it is not in it; its request's note goes.
@@ -56,7 +60,7 @@ local function heard(st, request, answer)
   local since = listening_since(st, slave)
   if not since then return end -- (the 08/01 that ended the mode: already out of it)
   leave(st, slave)
-  local values = { slave = slave, number = since.number, how = since.slave == 0 and PLAIN.listen_only_broadcast or "" }
+  local values = listen_values(slave, since)
   local said, notes, kept = say("listen_only", values), request.notes or {}, {}
   for index = 1, #notes do
     if notes[index] ~= said then kept[#kept + 1] = notes[index] end
@@ -175,12 +179,16 @@ local function answered(st, f)
   return awaits_answer(f) and listening_since(st, f.slave) == nil
 end
 
+-- The timeout rule: is `time` later than the timeout after request `pending`'s?
+local function timed_out(st, pending, time)
+  return st.timeout ~= nil and time ~= nil and pending.time ~= nil and (time - pending.time) / NS > st.timeout
+end
+
 local function pair(st, f)
   local pending = st.pending
   local timeout = st.timeout
   local late = nil
-  if pending ~= nil and timeout ~= nil and f.time ~= nil and pending.time ~= nil
-    and (f.time - pending.time) / NS > timeout then
+  if pending ~= nil and timed_out(st, pending, f.time) then
     unanswered(st, pending)
     late, pending = pending, nil
   end
@@ -223,8 +231,7 @@ local function pair(st, f)
     else
       st.broadcast = nil
       if since ~= nil then
-        note(f, say(sub == SUB_RESTART and "listen_only_ends" or "listen_only",
-          { slave = f.slave, number = since.number, how = since.slave == 0 and PLAIN.listen_only_broadcast or "" }))
+        note(f, say(sub == SUB_RESTART and "listen_only_ends" or "listen_only", listen_values(f.slave, since)))
         f.answerless, f.unheard = true, true
       elseif not awaits_answer(f) then
         note(f, PLAIN.never_answered)
@@ -271,11 +278,8 @@ end
 -- (pairing.py _answer_in_part, ANSWER_IN_PART). The request is answered, its note names the item, whose reason
 -- names the request (`...; slave 2, function 3; the answer to #1): its CRC cannot be checked`).
 local function pair_part(st, item)
-  local pending, timeout = st.pending, st.timeout
-  if pending == nil or pending.answerless then return end
-  if timeout ~= nil and item.time ~= nil and pending.time ~= nil and (item.time - pending.time) / NS > timeout then
-    return
-  end
+  local pending = st.pending
+  if pending == nil or pending.answerless or timed_out(st, pending, item.time) then return end
   local part = item.part
   if part.slave ~= pending.slave or (part.fn ~= nil and part.fn % 128 ~= pending.fn) then return end
   note(pending, "answer captured in part in #" .. item.number)

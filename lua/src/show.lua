@@ -74,8 +74,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     if f.provisional then -- (vw3-decode -V's line)
       t:add(pf.provisional, whole, true):set_generated():set_text(DATA.render.provisional_line)
     end
-    crc_at = f.length - 2
-    if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
+    crc_at = check_at(f)
     local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)
     local crc = t:add(pf.crc, crc_range, f.crc)
     local expected = t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()

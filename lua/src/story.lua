@@ -111,8 +111,7 @@ end
 local function words_at(rows, address, index, count)
   local row = rows[address]
   if row ~= nil and row.words == 2 and index + 1 < count then return 2 end
-  local before = index > 0 and rows[(address + 0xFFFF) % 0x10000]
-  return before and before.words == 2 and 0 or 1
+  return index > 0 and rows_before(rows, address) and 0 or 1
 end
 
 -- The bits_depend rule under which the register at `address` (its map row `row`) is read with its plain
@@ -192,7 +191,7 @@ local function describe(device, f, reg, plain, status, words, second, labels)
       text = say("first_word", row)
     end
   elseif words == 0 then -- (a row of its own names a second word as any register, naming.py's loop)
-    named = rows[(address + 0xFFFF) % 0x10000]
+    named = rows_before(rows, address)
     text = say("second_word", named)
   else
     local before = rows_before(rows, address) -- (its first word is not in the frame: naming.name_second_alone)

@@ -99,6 +99,9 @@ local function register_title(reg)
   return concat(parts)
 end
 
+-- Where the frame's check starts in its byte table: RTU's CRC, 2 bytes; ASCII's LRC, 1 byte before CR LF.
+local function check_at(f) return f.ascii and floor((f.length - 3) / 2) - 1 or f.length - 2 end
+
 -- The frame's byte table for the display, from the tvb it is shown from (ASCII: the hex pairs decoded).
 local function frame_bytes(f, tvb)
   if f.ascii then -- (the hex pairs between the colon and CR LF, as the framer read them)
@@ -471,8 +474,7 @@ local function summary(f, tvb, st, device)
     if st == nil and device == nil and NAMING[fn] ~= nil and NAMING[fn][f.kind] then return nil end
     local b, base, last = f.b, f.bi, f.b and f.data_at + f.data_len - 1
     if b == nil and tvb ~= nil then
-      b, base, last = frame_bytes(f, tvb), 0, f.length - 3 -- (RTU: the CRC's two bytes after the data)
-      if f.ascii then last = floor((f.length - 3) / 2) - 2 end -- (ASCII: the LRC's byte)
+      b, base, last = frame_bytes(f, tvb), 0, check_at(f) - 1
     end
     if b ~= nil then
       local text = steps(f, b, base, last, st, device) -- (describe.info_text's rstrip: no space before none)
@@ -482,7 +484,7 @@ local function summary(f, tvb, st, device)
   if f.kind == EXCEPTION then return slave .. " " .. name .. " " .. kind .. tail end -- (its code said)
   local text = span_text(f)
   if text == "" and LAYOUT_OF[kind][fn] == nil then -- (a code with no describer: its data counted)
-    local size = f.ascii and floor((f.length - 3) / 2) - 3 or f.length - 4 -- (but slave, code and check)
+    local size = check_at(f) - 2 -- (but slave and code)
     text = count_text(size, "byte") .. " of data"
   end
   return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail

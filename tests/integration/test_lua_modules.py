@@ -146,7 +146,7 @@ def test_check_fails_when_vw3_lua_is_not_the_assembly(tmp_path: Path, capsys: py
 def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """After a module's `local _ENV = M`, the generator binds as locals what it uses of the earlier modules'
     exports and of the globals (the pairing module: DATA and next; EXCEPTION, REQUEST and RESPONSE from
-    layouts; awaits_answer from stream; note, release_run, say, string_of and warn from decode);
+    layouts; awaits_answer and NS from stream; note, release_run, say, string_of and warn from decode);
     at its end it exports the module's top-level locals a later module names (pairing's pair and pair_part, which records
     calls, and ended, which show calls; not layouts' `select`, a length rule's maker, which would hide Lua's select from the later modules),
     besides the module's own export lines; and refuses a module that assigns such a name or an export line
@@ -155,7 +155,7 @@ def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytes
     pairing = plugin.split('package.preload["vw3.pairing"] = function(...)\n')[1]
     assert pairing.split("\n")[4:8] == [
         "local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)",
-        "local DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, REQUEST, RESPONSE, awaits_answer",
+        "local DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer",
         "local next, note, part_reason, release_run, say, string_of = next, note, part_reason, release_run, say, string_of",
         "local warn = warn"]
     assert pairing.split("\nend\n\n-- ---- vw3.")[0].endswith("\nM.ended, M.pair, M.pair_part = ended, pair, pair_part")
