@@ -258,6 +258,8 @@ local DATA = {
       ["RW"] = true,
       ["W"] = true,
     },
+    ["read_only"] = "R",
+    ["references_judged"] = 32,
     ["messages"] = {
       ["unknown_column"] = {
         ["format"] = "unknown column %s (columns: address, code, name, unit, scale, access, enum, bits, signed, source, type, order)",
@@ -949,6 +951,8 @@ local DATA = {
       [125] = true,
       [126] = true,
     },
+    ["listen_only"] = { 8, 4, 1 },
+    ["answer_in_part"] = "answer captured in part in #%s",
   },
   ["user_defined"] = {
     [65] = true,
@@ -6899,14 +6903,14 @@ package.preload["vw3.pairing"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer
-local next, note, part_reason, release_run, say, string_of = next, note, part_reason, release_run, say, string_of
-local warn = warn
+local format, next, note, part_reason, release_run, say = format, next, note, part_reason, release_run, say
+local string_of, table, warn = string_of, table, warn
 local PLAIN = DATA.plain_texts -- (the catalogue's texts without parameters: unmatched, never_answered, ...)
 local ECHO = DATA.pairing.echo
 -- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once by NS
 -- (vw3.stream's), as vw3-decode's Stamps subtract (model.py Stamp.__sub__): the same doubles, the same digits.
--- FC8's sub-functions that enter and leave Listen Only Mode (Application Protocol 6.8.1).
-local FC8_CODE, SUB_LISTEN_ONLY, SUB_RESTART = 8, 4, 1
+-- FC8's sub-functions that enter and leave Listen Only Mode (Application Protocol 6.8.1; pairing.py's).
+local FC8_CODE, SUB_LISTEN_ONLY, SUB_RESTART = table.unpack(DATA.pairing.listen_only)
 
 -- ---------------------------------------------------------------------------------------------------
 -- Pairing (dissector/decode/pairing.py): a response answers the open request with its slave and function
@@ -7180,7 +7184,7 @@ local function pair_part(st, item)
   if pending == nil or pending.answerless or timed_out(st, pending, item.time) then return end
   local part = item.part
   if part.slave ~= pending.slave or (part.fn ~= nil and part.fn % 128 ~= pending.fn) then return end
-  note(pending, "answer captured in part in #" .. item.number)
+  note(pending, format(DATA.pairing.answer_in_part, item.number))
   part.answers = pending.number
   item.reason = part_reason(part)
   pending.fields = nil
@@ -7453,7 +7457,7 @@ local function map_row(values)
     end
   end
   -- (a read-only parameter's write is warned, its refusal named: dissector/devices/access.py)
-  row.read_only = choice(values, "access", string.upper, "", FORMAT.access) == "R" or nil
+  row.read_only = choice(values, "access", string.upper, "", FORMAT.access) == FORMAT.read_only or nil
   row.enum = map_pairs(values.enum or "", "enum")
   row.bits = map_pairs(values.bits or "", "bits")
   local signed = choice(values, "signed", tostring, "", SIGNED)
@@ -7767,9 +7771,9 @@ local function rows_for(device, fn)
 end
 
 -- A map written in PLC references (maps_refs.py, message for message): judged on a slave's first
--- REFERENCES_JUDGED frames with registers; the layers that apply to the slave and could name a register at
--- a reference base past its address (FC3's or FC4's base, or one less), nil when none does.
-local REFERENCES_JUDGED = 32
+-- REFERENCES_JUDGED frames with registers (maps_refs.JUDGED); the layers that apply to the slave and could name
+-- a register at a reference base past its address (FC3's or FC4's base, or one less), nil when none does.
+local REFERENCES_JUDGED = DATA.map_format.references_judged
 local function reference_base(profile, fn) return (profile.plc_base or {})[fn] or profile.plc_base_default end
 
 local function reference_check(profile, slave)
@@ -8335,7 +8339,7 @@ end
 -- The read-only parameters (map access R: row.read_only) a write request touches, named `ETA (3201)`
 -- (access.written_read_only): FC6, FC16, FC23 by the registers written (a run), FC22 by its address.
 local REGISTER_WRITES, MASK_WRITTEN = DATA.rules.confirmed, DATA.rules.by_confirm.mask
-local READ_ONLY = "R" -- the access of a parameter no write changes (devices/access.py READ_ONLY)
+local READ_ONLY = DATA.map_format.read_only -- the access of a parameter no write changes (devices/access.py)
 local NONE = {} -- (read only, never changed: a device without a read-only row has none to name)
 local function written_read_only(f, device)
   if not device.read_only then return NONE end -- (no list of the addresses written made for nothing)

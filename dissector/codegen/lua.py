@@ -21,7 +21,7 @@ from typing import Any
 
 from dissector.codegen import fields_lua, lanes_lua, pack_lua, printable_table, timing_lua
 from dissector.decode import pairing
-from dissector.devices import access, maps, profiles
+from dissector.devices import access, maps, maps_refs, profiles
 from dissector.errors import GenerateError
 from dissector.framing import ascii as ascii_framer, evidence, rtu as framer, stream as streambuf
 from dissector.framing.rules import SILENCE_CUTS
@@ -86,6 +86,7 @@ def _lua_string(text: str) -> str:
 
 def plugin_data() -> dict[str, Any]:
     """Everything the plugin takes from the Python side, as plain data."""
+    from dissector.codegen.rules_lua import lua_format  # (rules_lua imports this module)
     data: dict[str, Any] = {
         "functions": SPEC.functions,
         "exceptions": SPEC.exceptions,
@@ -141,6 +142,8 @@ def plugin_data() -> dict[str, Any]:
             "pairs": {column: list(bounds) for column, bounds in maps.PAIRS.items()},
             "separators": list(maps.SEPARATORS),
             "access": maps.ACCESS,
+            "read_only": access.READ_ONLY,  # (the access of a parameter no write changes: a warning's text)
+            "references_judged": maps_refs.JUDGED,  # (a slave's frames with registers the reference check judges)
             "messages": _messages(maps.MESSAGES),
         },
         # What printable() escapes: the code points str.isprintable() refuses (codegen/printable_table.py).
@@ -155,7 +158,10 @@ def plugin_data() -> dict[str, Any]:
         # A register's bits without a name in its map row, by bit, as maps.interpret names them.
         "bit_names": {bit: rules.text("bit_unnamed", bit=bit) for bit in range(16)},
         # [pairing]: data bytes an answer echoes by function, values of a request's first data word no answer follows
-        "pairing": {"echo": SPEC.echo, "never_answered": SPEC.never_answered, "same_shape": pairing.SAME_SHAPE},
+        "pairing": {"echo": SPEC.echo, "never_answered": SPEC.never_answered, "same_shape": pairing.SAME_SHAPE,
+                    # (Listen Only Mode: FC8, its sub-functions that enter and leave it; a cut answer's note)
+                    "listen_only": [pairing.DIAGNOSTICS, pairing.LISTEN_ONLY, pairing.RESTART],
+                    "answer_in_part": lua_format(pairing.ANSWER_IN_PART)},
         "user_defined": SPEC.user_defined,
         "protocol": protocol_tables(),
         "lanes": lanes_lua.lanes_data(),  # (what the quick lanes take of the protocol table: codegen/lanes_lua.py)

@@ -96,9 +96,9 @@ local function rows_for(device, fn)
 end
 
 -- A map written in PLC references (maps_refs.py, message for message): judged on a slave's first
--- REFERENCES_JUDGED frames with registers; the layers that apply to the slave and could name a register at
--- a reference base past its address (FC3's or FC4's base, or one less), nil when none does.
-local REFERENCES_JUDGED = 32
+-- REFERENCES_JUDGED frames with registers (maps_refs.JUDGED); the layers that apply to the slave and could name
+-- a register at a reference base past its address (FC3's or FC4's base, or one less), nil when none does.
+local REFERENCES_JUDGED = DATA.map_format.references_judged
 local function reference_base(profile, fn) return (profile.plc_base or {})[fn] or profile.plc_base_default end
 
 local function reference_check(profile, slave)

@@ -50,7 +50,7 @@ end
 -- The read-only parameters (map access R: row.read_only) a write request touches, named `ETA (3201)`
 -- (access.written_read_only): FC6, FC16, FC23 by the registers written (a run), FC22 by its address.
 local REGISTER_WRITES, MASK_WRITTEN = DATA.rules.confirmed, DATA.rules.by_confirm.mask
-local READ_ONLY = "R" -- the access of a parameter no write changes (devices/access.py READ_ONLY)
+local READ_ONLY = DATA.map_format.read_only -- the access of a parameter no write changes (devices/access.py)
 local NONE = {} -- (read only, never changed: a device without a read-only row has none to name)
 local function written_read_only(f, device)
   if not device.read_only then return NONE end -- (no list of the addresses written made for nothing)

@@ -238,7 +238,7 @@ local function map_row(values)
     end
   end
   -- (a read-only parameter's write is warned, its refusal named: dissector/devices/access.py)
-  row.read_only = choice(values, "access", string.upper, "", FORMAT.access) == "R" or nil
+  row.read_only = choice(values, "access", string.upper, "", FORMAT.access) == FORMAT.read_only or nil
   row.enum = map_pairs(values.enum or "", "enum")
   row.bits = map_pairs(values.bits or "", "bits")
   local signed = choice(values, "signed", tostring, "", SIGNED)

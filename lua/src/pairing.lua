@@ -7,8 +7,8 @@ local PLAIN = DATA.plain_texts -- (the catalogue's texts without parameters: unm
 local ECHO = DATA.pairing.echo
 -- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once by NS
 -- (vw3.stream's), as vw3-decode's Stamps subtract (model.py Stamp.__sub__): the same doubles, the same digits.
--- FC8's sub-functions that enter and leave Listen Only Mode (Application Protocol 6.8.1).
-local FC8_CODE, SUB_LISTEN_ONLY, SUB_RESTART = 8, 4, 1
+-- FC8's sub-functions that enter and leave Listen Only Mode (Application Protocol 6.8.1; pairing.py's).
+local FC8_CODE, SUB_LISTEN_ONLY, SUB_RESTART = table.unpack(DATA.pairing.listen_only)
 
 -- ---------------------------------------------------------------------------------------------------
 -- Pairing (dissector/decode/pairing.py): a response answers the open request with its slave and function
@@ -282,7 +282,7 @@ local function pair_part(st, item)
   if pending == nil or pending.answerless or timed_out(st, pending, item.time) then return end
   local part = item.part
   if part.slave ~= pending.slave or (part.fn ~= nil and part.fn % 128 ~= pending.fn) then return end
-  note(pending, "answer captured in part in #" .. item.number)
+  note(pending, format(DATA.pairing.answer_in_part, item.number))
   part.answers = pending.number
   item.reason = part_reason(part)
   pending.fields = nil

@@ -145,7 +145,7 @@ def test_check_fails_when_vw3_lua_is_not_the_assembly(tmp_path: Path, capsys: py
 
 def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """After a module's `local _ENV = M`, the generator binds as locals what it uses of the earlier modules'
-    exports and of the globals (the pairing module: DATA and next; EXCEPTION, REQUEST and RESPONSE from
+    exports and of the globals (the pairing module: DATA, format, next and table; EXCEPTION, REQUEST and RESPONSE from
     layouts; awaits_answer and NS from stream; note, release_run, say, string_of and warn from decode);
     at its end it exports the module's top-level locals a later module names (pairing's pair and pair_part, which records
     calls, and ended, which show calls; not layouts' `select`, a length rule's maker, which would hide Lua's select from the later modules),
@@ -156,8 +156,8 @@ def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytes
     assert pairing.split("\n")[4:8] == [
         "local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)",
         "local DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer",
-        "local next, note, part_reason, release_run, say, string_of = next, note, part_reason, release_run, say, string_of",
-        "local warn = warn"]
+        "local format, next, note, part_reason, release_run, say = format, next, note, part_reason, release_run, say",
+        "local string_of, table, warn = string_of, table, warn"]
     assert pairing.split("\nend\n\n-- ---- vw3.")[0].endswith("\nM.ended, M.pair, M.pair_part = ended, pair, pair_part")
     assert "M.pair" not in (SRC / "pairing.lua").read_text(encoding="utf-8")
     layouts = plugin.split('package.preload["vw3.layouts"] = function(...)\n')[1].split("\nend\n\n-- ---- vw3.")[0]
