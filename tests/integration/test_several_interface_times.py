@@ -72,9 +72,45 @@ def _tsharks(path: Path) -> dict[str, str]:
 
 
 @BOTH
+def test_two_serial_interfaces_count_every_packet(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                  pure: bool) -> None:
+    use_engine(monkeypatch, pure)
+    path = _write(tmp_path, "three.pcapng", THREE)
+    one, two = f"==> {path}: interface 0 <==", f"==> {path}: interface 1 <=="
+    assert _column(path, "-t", "r") == [one, "0.001000", "0.010000", "0.030000", two, "0.003000", "0.011000"]
+    assert _column(path, "-t", "d") == [one, "0.001000", "0.007000", "0.010000", two, "0.002000", "0.001000"]
+    assert _column(path, "-t", "dd") == [one, "0.000000", "0.009000", "0.020000", two, "0.000000", "0.008000"]
+    fields = run_cli(["-T", "fields", "-e", "time_relative", "-e", "time_delta", str(path)])[1]
+    theirs = _tsharks(path)
+    assert fields.splitlines() == [theirs[packet] for packet in THREE_PACKETS]
+    assert fields.splitlines()[:2] == ["0.001000000\t0.001000000", "0.010000000\t0.007000000"]
+    out = run_cli(["-Y", "time_delta > 0.0015 && time_relative < 0.02", str(path)])[1]
+    assert [line[:19] for line in out.splitlines()] == [one[:19], "     2     0.010000", two[:19],
+                                                        "     1     0.003000"]
+
+
+@BOTH
+def test_a_serial_interface_beside_ethernet_counts_its_packets(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                                pure: bool) -> None:
+    use_engine(monkeypatch, pure)
+    path = _write(tmp_path, "beside.pcapng", BESIDE)
+    assert _column(path, "-t", "r") == ["0.001000", "0.010000"]
+    assert _column(path, "-t", "d") == ["0.001000", "0.005000"]
+    fields = run_cli(["-T", "fields", "-e", "time_relative", "-e", "time_delta", str(path)])[1]
+    theirs = _tsharks(path)
+    assert fields.splitlines() == [theirs["2"], theirs["4"]] == ["0.001000000\t0.001000000",
+                                                                 "0.010000000\t0.005000000"]
+
+
+@BOTH
 def test_detail_says_what_its_seconds_count_from(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                                  pure: bool) -> None:
     use_engine(monkeypatch, pure)
+    path = _write(tmp_path, "three.pcapng", THREE)
+    out = run_cli(["-V", str(path)])[1]
+    assert [line for line in out.splitlines() if "Arrival" in line][:2] == [
+        "    Arrival time: 2026-01-01 00:00:00.001000 UTC (0.001000 s since the first packet)",
+        "    Arrival time: 2026-01-01 00:00:00.010000 UTC (0.010000 s since the first packet)"]
     pcap = tmp_path / "net.pcap"
     writer = NetWriter(pcap)
     writer._write(bytes(28), 0.9)  # (not IP: a packet all the same, tshark's first frame)
