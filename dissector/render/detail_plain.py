@@ -29,7 +29,9 @@ from dissector.render.detail import (
 )
 from dissector.render.summary import check_untyped
 from dissector.render.pcapwriter import NANOS
-from dissector.render.timefmt import MICRO_DIGITS, SECONDS, arrival_line
+from dissector.render.timefmt import MICRO_DIGITS, SECONDS, SINCE, SINCE_ITEM, arrival_line
+
+_SINCE = {Stamp: SINCE_ITEM, **SINCE}  # arrival_line's words by its base's type, where it is a Stamp
 
 
 def detail_text(item: Item, base: float | None = None, digits: int = MICRO_DIGITS) -> str:
@@ -136,7 +138,7 @@ def plain_frame_text(frame: Frame, base: float | None, digits: int = MICRO_DIGIT
     head = None
     if time is None:
         head = f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}{words[1]}"
-    elif type(time) is Stamp and type(base) is Stamp and digits == MICRO_DIGITS:  # arrival_line's, in one f-string
+    elif type(time) is Stamp and (since := _SINCE.get(type(base))) and digits == MICRO_DIGITS:  # arrival_line's
         whole, rest = divmod(time.ns, NANOS)  # type: ignore[attr-defined]
         micros = round(rest / 1000)  # whole_micros
         if micros == 1_000_000:
@@ -145,7 +147,7 @@ def plain_frame_text(frame: Frame, base: float | None, digits: int = MICRO_DIGIT
         if second is not None:
             head = (f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}\n"
                     f"    Arrival time: {second}.{str(1_000_000 + micros)[1:]} UTC "  # micros:06d
-                    f"({(time.ns - base.ns) / NANOS:.6f} s since the first item){words[1]}")  # type: ignore[attr-defined]
+                    f"({(time.ns - base.ns) / NANOS:.6f}{since}{words[1]}")  # type: ignore[attr-defined]
     if head is None:
         head = (f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}\n"
                 f"{arrival_line(time, base, digits)}{words[1]}")  # type: ignore[arg-type]

@@ -39,12 +39,13 @@ warnings, notes, file; `fields.KEY` for a key of the PDU as the grammar parsed i
 `time` is the JSON's (seconds since the epoch), compared with a number or a date and time in quotes as
 tshark's frame.time is (`time >= "2026-12-05 10:00"`, local time: render/filter_dates.py);
 `time_relative` the seconds since the first item of the input, and `time_delta` since the item captured
-before, as the time column shows them (tshark's frame.time_relative and frame.time_delta): times, typed
-as tshark types those (FT_RELATIVE_TIME), take seconds in decimals (1.5, not 1e-3 or 0x1). A value of
-an enumerated field that does not exist is an error naming the nearest ones: kind, mode, status, code
-(the parameter codes of the run's maps), profile, function_name, exception_name, exception_meaning and
-subfunction_name (the spec's names and those of the run's profiles); so is a `fields.KEY` whose KEY no
-layout of the protocol table has (`-G fields` lists them).
+before (a network or several-interface capture's: since its first packet, and the packet before), as the
+time column shows them (tshark's frame.time_relative and frame.time_delta): times, typed as tshark types
+those (FT_RELATIVE_TIME), take seconds in decimals (1.5, not 1e-3 or 0x1). A value of an enumerated field
+that does not exist is an error naming the nearest ones: kind, mode, status, code (the parameter codes of
+the run's maps), profile, function_name, exception_name, exception_meaning and subfunction_name (the spec's
+names and those of the run's profiles); so is a `fields.KEY` whose KEY no layout of the protocol table has
+(`-G fields` lists them).
 
 Register fields: address, value, code, name, unit, scaled, text, status, source, label. A frame carries
 several registers, so these tests ask "is there a register such that...". The rule:

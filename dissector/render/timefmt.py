@@ -2,7 +2,8 @@
 
 Reference points come from the capture, never from what the display filter lets through: relative
 time (`r`) counts from the first item of the input and `d` from the item captured just before, as
-tshark does; only `dd` (delta displayed) looks at what was shown.
+tshark does (a network or several-interface capture's: from its packets, Clock.packets); only `dd`
+(delta displayed) looks at what was shown.
 """
 from __future__ import annotations
 
@@ -118,10 +119,11 @@ class Clock:
     # their precision (column_digits), its times cut to it as tshark's; the others' are rounded to us.
     units: int | None = None
     first: float | None = None  # time of the first timed item captured
-    # A network capture's (sources/ethernet.py PacketTimes): r counts from its first packet and d from the packet
-    # before the item's first, any packet, as tshark's frame.time_relative and frame.time_delta (a packet with no
-    # bus bytes, another connection's or interface's, is no item but a packet tshark shows); dd from the item
-    # shown before, as tshark -Y vw3's time_delta_displayed.
+    # A network capture's, or a serial bus's of a pcapng with packets on several interfaces (sources/ethernet.py
+    # PacketTimes): r counts from its first packet and d from the packet before the item's first, any packet, as
+    # tshark's frame.time_relative and frame.time_delta (a packet with no bus bytes, another connection's or
+    # interface's, is no item but a packet tshark shows); dd from the item shown before, as tshark -Y vw3's
+    # time_delta_displayed.
     packets: Any = None
     _previous_captured: float | None = None
     _previous_shown: float | None = None
@@ -140,7 +142,7 @@ class Clock:
             if time is None:
                 continue
             if self.first is None:
-                self.first = time if packets is None or packets.start is None else Stamp(packets.start)
+                self.first = time if packets is None or packets.start is None else FirstPacket(packets.start)
             if track:
                 self._before[id(item)] = self._previous_captured if packets is None else packet_before(packets, item)
             self._previous_captured = time
@@ -199,8 +201,22 @@ class Clock:
             self._before = {id(item): before[id(item)] for item in items if id(item) in before}
 
 
+class FirstPacket(Stamp):
+    """Clock.first when it is the capture's first packet's time (Clock.packets), not the first item's: -V's
+    Arrival time says which (arrival_line), as tshark -V's `Time since reference or first frame`."""
+
+    def __reduce__(self) -> tuple[type, tuple[int]]:
+        return FirstPacket, (self.ns,)
+
+
+# The words after the seconds of -V's Arrival time, by its base's type (a Stamp, a float: the first item's).
+SINCE = {FirstPacket: " s since the first packet)"}
+SINCE_ITEM = " s since the first item)"
+
+
 def network(packets: Any) -> Any:
-    """A network capture's PacketTimes, once its bus has a packet (a serial interface's bus has none)."""
+    """The PacketTimes the time column counts from, once its bus has a packet marked (a network capture's, a
+    serial bus's of a several-interface pcapng: sources/pcapng.py; none else)."""
     return packets if packets is not None and packets.offsets else None
 
 
@@ -240,13 +256,14 @@ def utc_text(seconds: float, digits: int = MICRO_DIGITS) -> str:
 
 
 def arrival_line(time: float, base: float | None, digits: int = MICRO_DIGITS) -> str:
-    """`    Arrival time: ... UTC (0.017823 s since the first item)` to `digits` decimals: past 6, two
-    Stamps' difference from their integer nanoseconds (a float near 1.7e9 s keeps 0.2 us)."""
-    if digits != MICRO_DIGITS and type(time) is Stamp and type(base) is Stamp:
-        since = signed_text(time.ns - base.ns, digits, True)  # type: ignore[attr-defined]
+    """`    Arrival time: ... UTC (0.017823 s since the first item)` to `digits` decimals (`the first packet`
+    where `base` is the capture's: FirstPacket): past 6, two Stamps' difference from their integer
+    nanoseconds (a float near 1.7e9 s keeps 0.2 us)."""
+    if digits != MICRO_DIGITS and type(time) is Stamp and isinstance(base, Stamp):
+        since = signed_text(time.ns - base.ns, digits, True)
     else:
         since = f"{time - (base or 0.0):.{digits}f}"
-    return f"    Arrival time: {utc_text(time, digits)} ({since} s since the first item)"
+    return f"    Arrival time: {utc_text(time, digits)} ({since}{SINCE.get(type(base), SINCE_ITEM)}"
 
 
 SECONDS: dict[float, str] = {}  # a whole second's `YYYY-MM-DD HH:MM:SS` (bounded)

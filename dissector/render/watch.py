@@ -3,8 +3,9 @@
     frame  time  slave code old -> new (unit)
 
 `--json` writes one object a change: `time` (seconds since the epoch, as the --json items' `time`),
-`time_relative` (seconds since the first item, as -T fields' key), frame, slave, address, code, old,
-new, unit, and `provisional` when true; `-t` shapes the text lines' time column only.
+`time_relative` (seconds since the first item, a network or several-interface capture's first packet, as -T
+fields' key), frame, slave, address, code, old, new, unit, and `provisional` when true; `-t` shapes the text
+lines' time column only.
 
 A watch line is a change of the parameter history (render/history.py): the state `--stats` counts in
 `changes` and `--report` draws, so the three cannot disagree. A parameter's state is what the wire last
@@ -66,7 +67,7 @@ class Change:
     unit: str | None
     column: str = "-"  # the time column as -t formats it
     provisional: bool = False  # read before the slave's profile was chosen: its device may read it otherwise
-    time_relative: float | None = None  # seconds since the first item, as -T fields' time_relative
+    time_relative: float | None = None  # as -T fields' time_relative (since the first item, or packet)
     # The address as --address-style shows it (plc: 40001; an input register's else `input 5`), None: the address.
     label: str | None = None
     broadcast: bool = False  # a broadcast write: every slave written, whatever their states were (old: ?)

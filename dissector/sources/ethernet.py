@@ -169,8 +169,14 @@ def segment(linktype: int, record: bytes) -> Segment | str:
                    bool(flags & 0x02), ack, window, flags)
 
 
+# PacketTimes' marks kept at most, whoever asks (memory bounded: ~40 MB): the newest 3/4 are more than the framing
+# engine's block of 256 kB can hold (a mark a byte at least: accel/records.py BLOCK_BYTES), the ones it may ask.
+UNASKED_MARKS = 1 << 19
+
+
 class PacketTimes:
-    """What tshark's time columns count from on a network capture, whose packets without bus bytes are no items
+    """What tshark's time columns count from on a network capture (or a several-interface pcapng: its serial buses,
+    sources/pcapng.py read_pcapng `shared`), whose packets without bus bytes are no items
     (render/timefmt.py Clock): `start`, its first packet's time (frame.time_relative's zero, any packet, any
     connection's or interface's), and for each of the bus's packets, by the stream offset of its first byte,
     the time of the packet captured before it (frame.time_delta's reference). ns; None: untimed."""
@@ -191,6 +197,8 @@ class PacketTimes:
 
     def taken(self, length: int, before: int | None) -> None:
         """The bus's next `length` bytes came in a packet captured after one at `before`."""
+        if len(self.offsets) >= UNASKED_MARKS:  # (--stats counted in the engine asks none, nor calls forget)
+            del self.offsets[: UNASKED_MARKS // 4], self.befores[: UNASKED_MARKS // 4]
         self.offsets.append(self.fed)
         self.befores.append(before)
         self.fed += length

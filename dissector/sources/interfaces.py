@@ -61,7 +61,7 @@ def packet_interfaces(path: str, ports: RtuPorts = RtuPorts()) -> list[PacketInt
         if not stat.S_ISREG(os.stat(path).st_mode):
             return []
         status = os.stat(path)
-        walked, described, networked = _walked(path, status.st_size, status.st_mtime_ns)
+        walked, described, networked, _carrying = _walked(path, status.st_size, status.st_mtime_ns)
         buses = [replace(bus) for bus in walked]
         if ports == RtuPorts() or buses and not networked:
             return buses
@@ -108,20 +108,31 @@ def _span(span: list, seek: int) -> Span:  # type: ignore[type-arg]
     return first, last, offset if seek else -1, start, before
 
 
+def several_interfaces(path: str) -> bool:
+    """Do packets of a regular pcapng file come from more than one interface (any link type)? Then each bus's time
+    column counts the file's packets, as tshark's (sources/pcapng.py read_pcapng)."""
+    try:
+        status = os.stat(path)
+        return stat.S_ISREG(status.st_mode) and _walked(path, status.st_size, status.st_mtime_ns)[3] > 1
+    except (OSError, struct.error, ValueError, SourceError):
+        return False
+
+
 @functools.lru_cache(maxsize=8)
-def _walked(path: str, size: int, _mtime: int) -> tuple[tuple[PacketInterface, ...], int, bool]:
+def _walked(path: str, size: int, _mtime: int) -> tuple[tuple[PacketInterface, ...], int, bool, int]:
     """_walk's answer, walked once (each bus asks again as it is opened: 1,600 buses walked a file of 3,200
     packets 3,200 times, quadratic)."""
     with open(path, "rb", buffering=0) as stream:
-        buses, described, networked = _walk(stream, size, path)
-        return tuple(buses), described, networked
+        buses, described, networked, carrying = _walk(stream, size, path)
+        return tuple(buses), described, networked, carrying
 
 
-def _walk(stream, size: int, path: str) -> tuple[list[PacketInterface], int, bool]:  # type: ignore[no-untyped-def]
-    """The serial interfaces carrying packets, how many interfaces are described, and whether a network one carries
-    packets. Block by block from a megabyte read at a time (a block header parsed in memory, bodies passed over)."""
+def _walk(stream, size: int, path: str) -> tuple[list[PacketInterface], int, bool, int]:  # type: ignore[no-untyped-def]
+    """The serial interfaces carrying packets, how many interfaces are described, whether a network one carries
+    packets, and how many carry packets. Block by block from a megabyte read at a time (a block header parsed in
+    memory, bodies passed over)."""
     if stream.read(4) != SHB_MAGIC:
-        return [], 0, False
+        return [], 0, False, 0
     described: list[Interface] = []
     section: list[int] = []  # the section's interfaces' ordinals
     used: set[int] = set()
@@ -167,7 +178,7 @@ def _walk(stream, size: int, path: str) -> tuple[list[PacketInterface], int, boo
              if serial(described[ordinal].linktype)]
     if buses:
         buses[0].first = True
-    return buses, len(described), any(described[ordinal].linktype in NETWORK_LINKTYPES for ordinal in used)
+    return buses, len(described), any(described[ordinal].linktype in NETWORK_LINKTYPES for ordinal in used), len(used)
 
 
 def open_interface(  # type: ignore[no-untyped-def]

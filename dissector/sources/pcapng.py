@@ -113,6 +113,7 @@ class _Reader:
         # its records alone parsed, within `span`)
         self.transport = Transport(inp.name, ports, connection, span=span)
         self.networked = False  # a network interface's packet was read
+        self.marks = False  # a serial interface's packets mark their times (read_pcapng `shared`)
         # The warnings that number a record: `where` (the bus's title, `file: if_name`) first when the file is
         # read once per interface, each numbering its own records ("record 2" alone sent the reader to the
         # first bus's, or to tshark's frame 2).
@@ -409,10 +410,15 @@ class _Reader:
         rtac = self._stamped if interface.linktype == LINKTYPE_RTAC_SERIAL else None
         network = interface.linktype in NETWORK_LINKTYPES
         self.networked = self.networked or network
+        # (an RTAC record's time is in its bytes, not tshark's frame time: its bus counts from its items)
+        mark = self.marks and interface.linktype == LINKTYPE_USER0
+        packet = self.transport.times.packet(getattr(time, "ns", None)) if mark else None
         for chunk in record_chunks(
             self.inp, captured, time, interface.linktype, self.record, self.record_log, self.chunk_size, rtac,
             original, self.transport if network else None,
         ):
+            if mark:
+                self.transport.times.taken(len(chunk.data), packet)
             if network and time is not None:  # (the plugin sees it: it was recording then)
                 self.last_time = time
             if last is not None:
@@ -545,9 +551,10 @@ class PcapngChunks:
     @property
     def packet_times(self) -> PacketTimes | None:
         """Its network interfaces' packet times (sources/ethernet.py) when RTU ports are given, but for a serial
-        interface's bus (`only`)."""
+        interface's bus (`only`); a serial bus's of a file with packets on several interfaces (read_pcapng)."""
         reader = self._reader
-        return reader.transport.times if reader.transport.ports != RtuPorts() and reader.only is None else None
+        networked = reader.transport.ports != RtuPorts() and reader.only is None
+        return reader.transport.times if networked or reader.marks else None
 
     @property
     def time_units(self) -> int | None:
@@ -577,10 +584,14 @@ class PcapngChunks:
 def read_pcapng(inp: Input, log: WarningLog, chunk_size: int, only: int | None = None,
                 tell_skipped: bool = True, where: str = "", ports: RtuPorts = RtuPorts(),
                 connection: tuple[str, str, str] | None = None, span: Span | None = None, networks: bool = False,
-                beside: bool = False) -> PcapngChunks:
+                beside: bool = False, shared: bool = False) -> PcapngChunks:
     """The chunks of a pcapng's packets (`only`: of that interface alone, by its ordinal; `tell_skipped`:
     warn of the interfaces carrying no serial bytes; `where`: said before a warning that numbers a record;
     `ports`, `connection`: a network interface's RTU ports and the one connection read, sources/ethernet.py;
-    `networks`, `beside`: the network interfaces' packets alone are read, or passed over as other buses')."""
-    return PcapngChunks(_Reader(inp, log, chunk_size, only=only, tell_skipped=tell_skipped, where=where,
-                                ports=ports, connection=connection, span=span, networks=networks, beside=beside))
+    `networks`, `beside`: the network interfaces' packets alone are read, or passed over as other buses';
+    `shared`, or `only`: packets come from several interfaces, the serial bus's time column counts them all,
+    as tshark's frame.time_relative and frame.time_delta, where it counted its own items)."""
+    reader = _Reader(inp, log, chunk_size, only=only, tell_skipped=tell_skipped, where=where, ports=ports,
+                     connection=connection, span=span, networks=networks, beside=beside)
+    reader.marks = only is not None or shared
+    return PcapngChunks(reader)

@@ -29,6 +29,7 @@ from dissector.sources.dumps import dump_tool, read_dump, refuse_words, word_dum
 from dissector.sources.ethernet import RtuPorts
 from dissector.sources.encoding import Encoding, decoded, marked, text_input
 from dissector.sources.hexdump import CONTROL, characters, looks_like_hexdump, read_hexdump
+from dissector.sources.interfaces import several_interfaces
 from dissector.sources.libmodbus import looks_like_libmodbus, read_libmodbus
 from dissector.sources.packetdump import looks_like_packet_dump, read_packet_dump
 from dissector.sources.notation import DECIMAL, HEX, Notation
@@ -367,7 +368,7 @@ def _start(
     elif format == "pcap":
         chunks = read_pcap(inp, log, chunk_size, ports)
     elif format == "pcapng":
-        chunks = read_pcapng(inp, log, chunk_size, ports=ports)
+        chunks = read_pcapng(inp, log, chunk_size, ports=ports, shared=several_interfaces(name))
     else:
         chunks = READERS[format](inp, log, chunk_size)
     head: list[Chunk] = []

@@ -167,11 +167,12 @@ def test_stats_json_is_one_line_a_bus(two: Path, monkeypatch: pytest.MonkeyPatch
 def test_watch_follows_each_bus(two: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
     status, out, err = _run(["--watch", "8401", str(two)], monkeypatch, pure)
     assert (status, err) == (0, "")
-    assert out == f"==> {two}: /dev/pts/0 <==\n\n==> {two}: /dev/pts/1 <==\n     4     0.212000  12 8401 2 -> 3\n"
+    # (from the file's first packet, /dev/pts/0's, as tshark's frame.time_relative)
+    assert out == f"==> {two}: /dev/pts/0 <==\n\n==> {two}: /dev/pts/1 <==\n     4     0.214000  12 8401 2 -> 3\n"
     status, out, err = _run(["--watch", "8401", "--json", str(two)], monkeypatch, pure)
     assert (status, err) == (0, "")
     assert [json.loads(line) for line in out.splitlines()] == [{
-        "time": 1767225600.214, "time_relative": 0.212, "frame": 4, "slave": 12, "address": 8401, "code": None,
+        "time": 1767225600.214, "time_relative": 0.214, "frame": 4, "slave": 12, "address": 8401, "code": None,
         "old": "2", "new": "3", "unit": None, "file": f"{two}: /dev/pts/1"}]
 
 

@@ -66,9 +66,9 @@ def test_each_interface_is_its_own_bus(tmp_path: Path, monkeypatch: pytest.Monke
         f"     1     0.000000  {READ}",
         "     2     0.010000  12 response  Read Holding Registers 8400..8402 (3): 8400=32768 8401=3 8402=2 "
         "[#1, 10.0 ms]  CRC ok",
-        f"==> {path}: interface 1 <==",
-        f"     1     0.000000  {READ}",
-        "     2     0.010000  12 response  Read Holding Registers 8400..8402 (3): 8400=1 8401=2 8402=3 "
+        f"==> {path}: interface 1 <==",  # (from the file's first packet, interface 0's, as tshark's)
+        f"     1     0.001000  {READ}",
+        "     2     0.011000  12 response  Read Holding Registers 8400..8402 (3): 8400=1 8401=2 8402=3 "
         "[#1, 10.0 ms]  CRC ok",
     ]
     items = [json.loads(line) for line in _decode([str(path), "--json"], monkeypatch, pure)[1].splitlines()]
@@ -103,10 +103,10 @@ def test_interfaces_are_named_and_have_their_own_devices(
         f"     3     0.200000  {READ}",
         f"     4     0.208000  {a} [#3, 8.0 ms]  CRC ok",
         f"==> {path}: /dev/pts/1 <==",
-        f"     1     0.000000  {READ}",
-        f"     2     0.009000  {b} [#1, 9.0 ms]  CRC ok",
-        f"     3     0.200000  {READ}",
-        f"     4     0.209000  {b} [#3, 9.0 ms]  CRC ok",
+        f"     1     0.002000  {READ}",
+        f"     2     0.011000  {b} [#1, 9.0 ms]  CRC ok",
+        f"     3     0.202000  {READ}",
+        f"     4     0.211000  {b} [#3, 9.0 ms]  CRC ok",
     ]
 
 

@@ -48,7 +48,8 @@ def test_serial_interface_beside_ethernet_is_decoded(
                                         (1, 11_000, ANSWER)]))
     status, out, err = run_cli([str(path)])
     assert status == 0
-    assert out.splitlines() == [f"     1     0.000000  {READ}", f"     2     0.010000  {ANSWERED}"]
+    # (from the capture's first packet, the Ethernet one, as tshark's frame.time_relative)
+    assert out.splitlines() == [f"     1     0.001000  {READ}", f"     2     0.011000  {ANSWERED}"]
     assert err.splitlines() == [f"vw3-decode: warning: {NOT_READ}: 2 records (108 bytes) skipped"]
 
 
@@ -63,8 +64,8 @@ def test_two_serial_buses_beside_ethernet_warn_once(
     status, out, err = run_cli([str(path)])
     assert status == 0
     assert out.splitlines() == [
-        f"==> {path}: interface 1 <==", f"     1     0.000000  {READ}", f"     2     0.010000  {ANSWERED}",
-        f"==> {path}: interface 2 <==", f"     1     0.000000  {READ}", f"     2     0.010000  {ANSWERED}",
+        f"==> {path}: interface 1 <==", f"     1     0.001000  {READ}", f"     2     0.011000  {ANSWERED}",
+        f"==> {path}: interface 2 <==", f"     1     0.002000  {READ}", f"     2     0.012000  {ANSWERED}",
     ]
     assert err.splitlines() == [f"vw3-decode: warning: {NOT_READ}: 1 record (54 bytes) skipped"]
 
