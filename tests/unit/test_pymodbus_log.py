@@ -121,3 +121,20 @@ def test_last_line_cut_short(tmp_path: Path) -> None:
     assert status == 0 and out.splitlines()[1].startswith("     2     0.001000   - noise     9 bytes")
     assert err == (f"vw3-decode: warning: {path} line 2 is cut short (the input ends inside it, without a line end):"
                    " its 9 whole bytes are decoded, the rest ('0xd') is not\n")
+
+
+ASCII = """\
+2026-12-07 14:58:37,478 DEBUG transport:357 send: 0x3a 0x30 0x37 0x30 0x33 0x30 0x30 0x30 0x30 0x30 0x30 0x30 0x33 0x46 0x33 0xd 0xa
+2026-12-07 14:58:37,483 DEBUG transport:308 recv: 0x3a 0x30 0x37 0x30 0x33 0x30 0x36 0x30 0x30 0x30 0x30 0x30 0x30 0x30 0x31 0x30 0x30 0x30 0x32 0x45 0x44 0xd 0xa extra data: 
+2026-12-07 14:58:37,483 DEBUG transport:357 send: 0x3a 0x30 0x37 0x30 0x36 0x30 0x30 0x30 0x35 0x30 0x34 0x44 0x32 0x31 0x38 0xd 0xa
+2026-12-07 14:58:37,483 DEBUG transport:308 recv: 0x3a 0x30 0x37 0x30 0x36 0x30 0x30 0x30 0x35 0x30 0x34 0x44 0x32 0x31 0x38 0xd 0xa extra data: 
+"""
+
+
+def test_ascii_framer_log(tmp_path: Path) -> None:
+    """pymodbus's ASCII framer: its send:/recv: bytes are the characters on the wire, the mode read from them."""
+    assert run_cli(["-n", _log(tmp_path, ASCII)]) == (0, (
+        "     1     0.000000   7 request   Read Holding Registers 0..2 (3)  LRC ok\n"
+        "     2     0.005000   7 response  Read Holding Registers 0..2 (3): 0=0 1=1 2=2 [#1, 5.0 ms]  LRC ok\n"
+        "     3     0.005000   7 request   Write Single Register 5 = 1234  LRC ok\n"
+        "     4     0.005000   7 response  Write Single Register 5 = 1234 [#3, 0.0 ms]  LRC ok\n"), "")
