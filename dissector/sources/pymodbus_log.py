@@ -8,7 +8,8 @@ bytes its transport wrote and read, one `send:` or `recv:` line each, in pymodbu
 
 Only `send:` and `recv:` are the wire (its async transport's, which a server and an async client use; a sync
 client logs no bytes but the framer's, and is said to): `Processing:` is the framer's buffer (bytes a recv line gave, again),
-`extra data:` after a recv the bytes held over from before it (given by an earlier recv), and pymodbus's
+`extra data:` (`old_data:` in earlier 3.x versions) after a recv the bytes held over from before it (given by an
+earlier recv), and pymodbus's
 other lines (connecting, decoded PDUs, tracebacks) are passed over. Each line is timed by the stamp it starts
 with (logging's `2026-12-07 14:53:39,225`: to the millisecond, when the call returned). A send is a whole frame
 (pymodbus writes a frame at once); a recv is what one read returned, maybe part of a frame, so a run of
@@ -26,20 +27,28 @@ from dissector.sources.hexdump import Days, HexLineError, StampedLines, _timesta
 
 # `send: 0x7 0x3 ...`, `recv: 0x7 ... extra data: 0x..` (also upper case, as pymodbus 2 wrote them), after the
 # logging prefix: a space, or the `:` of basicConfig's `DEBUG:pymodbus.logging:send: ...`.
-_WIRE = re.compile(r"(?:^|[\s:])(send|recv): ?(.*?)(?: extra data:.*)?$", re.IGNORECASE)
+_WIRE = re.compile(r"(?:^|[\s:])(send|recv): ?(.*)$", re.IGNORECASE)
 _BYTE = re.compile(r"0x([0-9A-Fa-f]{1,2})")
+_NUMBER = re.compile(r"0x[0-9A-Fa-f]*")
+# What follows the bytes: pymodbus 3.6 on `extra data: 0x..`, earlier 3.x `old_data: 0x.. addr=None`.
+_LABEL = re.compile(r"(?:extra|[A-Za-z_]\w*[:=])")
 _BUFFER = re.compile(r"\bProcessing: 0x")
 # pymodbus's own line format (its pymodbus_apply_logging_config), for a log whose first lines carry no bytes.
 _OWN = re.compile(r"\d{4}-\d\d-\d\d \d\d:\d\d:\d\d,\d{3} (?:DEBUG|INFO |WARNING|ERROR|CRITICAL) \w+:\d+ .*")
 
 
-def wire_line(line: str) -> tuple[str, list[str]] | None:
-    """("send" or "recv", the byte tokens) of a line with bytes pymodbus wrote or read, else None."""
+def wire_line(line: str) -> tuple[str, list[str], bool] | None:
+    """("send" or "recv", the byte tokens, whether a label follows them: they are whole) of a line with bytes
+    pymodbus wrote or read, else None. A token neither a number nor a label is kept, for the reader to name."""
     found = _WIRE.search(line.rstrip("\r\n"))
     if found is None:
         return None
     tokens = found.group(2).split()
-    return (found.group(1).lower(), tokens) if tokens and _BYTE.fullmatch(tokens[0]) else None
+    if not tokens or _BYTE.fullmatch(tokens[0]) is None:
+        return None
+    count = next((index for index, token in enumerate(tokens) if not _NUMBER.fullmatch(token)), len(tokens))
+    labelled = count < len(tokens) and _LABEL.match(tokens[count]) is not None
+    return found.group(1).lower(), tokens[:count] if labelled else tokens, labelled
 
 
 def looks_like_pymodbus(text: str, complete: bool) -> bool:
@@ -79,8 +88,8 @@ def _chunks(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
         if wire is None:
             buffered = buffered or _BUFFER.search(line) is not None
             continue
-        direction, tokens = wire
-        if not ended and " extra data:" not in line:  # the last number may be cut (`0xd` of `0xda`): not read
+        direction, tokens, labelled = wire
+        if not ended and not labelled:  # the last number may be cut (`0xd` of `0xda`): not read
             data = _bytes(tokens[:-1], f"{inp.name} line {number}")
             log.warn("truncated input", cut_short(inp.name, number, data, tokens[-1]))
         else:

@@ -138,3 +138,42 @@ def test_ascii_framer_log(tmp_path: Path) -> None:
         "     2     0.005000   7 response  Read Holding Registers 0..2 (3): 0=0 1=1 2=2 [#1, 5.0 ms]  LRC ok\n"
         "     3     0.005000   7 request   Write Single Register 5 = 1234  LRC ok\n"
         "     4     0.005000   7 response  Write Single Register 5 = 1234 [#3, 0.0 ms]  LRC ok\n"), "")
+
+
+# pymodbus 3.7.4 (in a venv), an async serial server on a pseudo-terminal, the read request written in two parts
+# 20 ms apart: its recv lines end `old_data:  addr=None`, not `extra data:`.
+SERVER_37 = """\
+2026-12-07 15:00:49,799 DEBUG transport:250 Awaiting connections server_listener
+2026-12-07 15:00:49,800 INFO  async_io:301 Server listening.
+2026-12-07 15:00:49,800 DEBUG transport:270 Connected to server
+2026-12-07 15:00:50,808 DEBUG transport:322 recv: 0x7 0x3 0x0 old_data:  addr=None
+2026-12-07 15:00:50,808 DEBUG async_io:123 Handling data: 0x7 0x3 0x0
+2026-12-07 15:00:50,808 DEBUG base:92 Processing: 0x7 0x3 0x0
+2026-12-07 15:00:50,808 DEBUG rtu:105 Short frame: 0x7 0x3 0x0 wait for more data
+2026-12-07 15:00:50,823 DEBUG transport:322 recv: 0x0 0x0 0x3 0x5 0xad old_data:  addr=None
+2026-12-07 15:00:50,823 DEBUG async_io:123 Handling data: 0x7 0x3 0x0 0x0 0x0 0x3 0x5 0xad
+2026-12-07 15:00:50,823 DEBUG base:92 Processing: 0x7 0x3 0x0 0x0 0x0 0x3 0x5 0xad
+2026-12-07 15:00:50,823 DEBUG decoders:103 decode PDU for 3
+2026-12-07 15:00:50,823 DEBUG base:102 Frame advanced, resetting header!!
+2026-12-07 15:00:50,823 DEBUG context:131 validate: fc-[3] address-1: count-3
+2026-12-07 15:00:50,823 DEBUG context:144 getValues: fc-[3] address-1: count-3
+2026-12-07 15:00:50,823 DEBUG transport:379 send: 0x7 0x3 0x6 0x0 0x1 0x0 0x2 0x0 0x3 0xd6 0xd4
+2026-12-07 15:00:51,326 DEBUG transport:322 recv: 0x7 0x6 0x0 0x5 0x4 0xd2 0x1b 0x30 old_data:  addr=None
+2026-12-07 15:00:51,326 DEBUG async_io:123 Handling data: 0x7 0x6 0x0 0x5 0x4 0xd2 0x1b 0x30
+2026-12-07 15:00:51,326 DEBUG base:92 Processing: 0x7 0x6 0x0 0x5 0x4 0xd2 0x1b 0x30
+2026-12-07 15:00:51,326 DEBUG decoders:103 decode PDU for 6
+2026-12-07 15:00:51,326 DEBUG base:102 Frame advanced, resetting header!!
+2026-12-07 15:00:51,326 DEBUG context:131 validate: fc-[6] address-6: count-1
+2026-12-07 15:00:51,326 DEBUG context:156 setValues[6] address-6: count-1
+2026-12-07 15:00:51,326 DEBUG context:144 getValues: fc-[6] address-6: count-1
+2026-12-07 15:00:51,326 DEBUG transport:379 send: 0x7 0x6 0x0 0x5 0x4 0xd2 0x1b 0x30
+"""
+
+
+def test_server_log_of_pymodbus_37(tmp_path: Path) -> None:
+    assert run_cli(["-n", _log(tmp_path, SERVER_37)]) == (0, (
+        "     1     0.000000   7 request   Read Holding Registers 0..2 (3) [warning: silence of 13.281 ms inside the frame"
+        " before byte 3 (longer than t1.5 = 0.859 ms at 19200 baud)]  CRC ok\n"
+        "     2     0.015000   7 response  Read Holding Registers 0..2 (3): 0=1 1=2 2=3 [#1, 15.0 ms]  CRC ok\n"
+        "     3     0.518000   7 request   Write Single Register 5 = 1234  CRC ok\n"
+        "     4     0.518000   7 response  Write Single Register 5 = 1234 [#3, 0.0 ms]  CRC ok\n"), "")
