@@ -177,3 +177,45 @@ def test_server_log_of_pymodbus_37(tmp_path: Path) -> None:
         "     2     0.015000   7 response  Read Holding Registers 0..2 (3): 0=1 1=2 2=3 [#1, 15.0 ms]  CRC ok\n"
         "     3     0.518000   7 request   Write Single Register 5 = 1234  CRC ok\n"
         "     4     0.518000   7 response  Write Single Register 5 = 1234 [#3, 0.0 ms]  CRC ok\n"), "")
+
+
+# pymodbus 2.5.3 (in a venv), its sync ModbusSerialClient on a pseudo-terminal, logged in a format of its users' (module
+# and line padded): SEND:/RECV: lines, the RECV a whole answer read in two parts.
+CLIENT_25 = """\
+2026-12-07 15:06:44,212 MainThread      DEBUG    transaction    :139      Current transaction state - IDLE
+2026-12-07 15:06:44,212 MainThread      DEBUG    transaction    :144      Running transaction 1
+2026-12-07 15:06:44,212 MainThread      DEBUG    transaction    :273      SEND: 0x7 0x3 0x0 0x0 0x0 0x3 0x5 0xad
+2026-12-07 15:06:44,212 MainThread      DEBUG    sync           :76       New Transaction state 'SENDING'
+2026-12-07 15:06:44,212 MainThread      DEBUG    transaction    :287      Changing transaction state from 'SENDING' to 'WAITING FOR REPLY'
+2026-12-07 15:06:44,238 MainThread      DEBUG    transaction    :375      Changing transaction state from 'WAITING FOR REPLY' to 'PROCESSING REPLY'
+2026-12-07 15:06:44,238 MainThread      DEBUG    transaction    :297      RECV: 0x7 0x3 0x6 0x0 0x0 0x0 0x1 0x0 0x2 0xda 0xd4
+2026-12-07 15:06:44,238 MainThread      DEBUG    rtu_framer     :185      Getting Frame - 0x3 0x6 0x0 0x0 0x0 0x1 0x0 0x2
+2026-12-07 15:06:44,238 MainThread      DEBUG    factory        :266      Factory Response[ReadHoldingRegistersResponse: 3]
+2026-12-07 15:06:44,238 MainThread      DEBUG    rtu_framer     :107      Frame advanced, resetting header!!
+2026-12-07 15:06:44,238 MainThread      DEBUG    transaction    :454      Adding transaction 7
+2026-12-07 15:06:44,238 MainThread      DEBUG    transaction    :465      Getting transaction 7
+2026-12-07 15:06:44,238 MainThread      DEBUG    transaction    :224      Changing transaction state from 'PROCESSING REPLY' to 'TRANSACTION_COMPLETE'
+2026-12-07 15:06:44,238 MainThread      DEBUG    transaction    :139      Current transaction state - TRANSACTION_COMPLETE
+2026-12-07 15:06:44,238 MainThread      DEBUG    transaction    :144      Running transaction 2
+2026-12-07 15:06:44,238 MainThread      DEBUG    transaction    :273      SEND: 0x7 0x6 0x0 0x5 0x4 0xd2 0x1b 0x30
+2026-12-07 15:06:44,238 MainThread      DEBUG    rtu_framer     :267      Changing state to IDLE - Last Frame End - 1796656004.238116, Current Time stamp - 1796656004.238718
+2026-12-07 15:06:44,238 MainThread      DEBUG    rtu_framer     :275      Waiting for 3.5 char before next send - 2.005 ms
+2026-12-07 15:06:44,240 MainThread      DEBUG    sync           :76       New Transaction state 'SENDING'
+2026-12-07 15:06:44,241 MainThread      DEBUG    transaction    :287      Changing transaction state from 'SENDING' to 'WAITING FOR REPLY'
+2026-12-07 15:06:44,241 MainThread      DEBUG    transaction    :375      Changing transaction state from 'WAITING FOR REPLY' to 'PROCESSING REPLY'
+2026-12-07 15:06:44,241 MainThread      DEBUG    transaction    :297      RECV: 0x7 0x6 0x0 0x5 0x4 0xd2 0x1b 0x30
+2026-12-07 15:06:44,241 MainThread      DEBUG    rtu_framer     :185      Getting Frame - 0x6 0x0 0x5 0x4 0xd2
+2026-12-07 15:06:44,241 MainThread      DEBUG    factory        :266      Factory Response[WriteSingleRegisterResponse: 6]
+2026-12-07 15:06:44,241 MainThread      DEBUG    rtu_framer     :107      Frame advanced, resetting header!!
+2026-12-07 15:06:44,241 MainThread      DEBUG    transaction    :454      Adding transaction 7
+2026-12-07 15:06:44,241 MainThread      DEBUG    transaction    :465      Getting transaction 7
+2026-12-07 15:06:44,241 MainThread      DEBUG    transaction    :224      Changing transaction state from 'PROCESSING REPLY' to 'TRANSACTION_COMPLETE'
+"""
+
+
+def test_client_log_of_pymodbus_25(tmp_path: Path) -> None:
+    assert run_cli(["-n", _log(tmp_path, CLIENT_25)]) == (0, (
+        "     1     0.000000   7 request   Read Holding Registers 0..2 (3)  CRC ok\n"
+        "     2     0.026000   7 response  Read Holding Registers 0..2 (3): 0=0 1=1 2=2 [#1, 26.0 ms]  CRC ok\n"
+        "     3     0.026000   7 request   Write Single Register 5 = 1234  CRC ok\n"
+        "     4     0.029000   7 response  Write Single Register 5 = 1234 [#3, 3.0 ms]  CRC ok\n"), "")
