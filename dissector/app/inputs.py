@@ -29,8 +29,8 @@ from dissector.sources.pcapng import Interface as RecordedInterface
 from dissector.sources.reader import NOTATIONS, SourceError, open_source
 from dissector.sources.trail import Piece, RecordTrail, item_comments, observed
 
-TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic", "tshark-x"])  # formats whose records may carry times
-TIMED_TEXTS = ("hexdump", "traffic", "tshark-x")  # of those, texts: their times' digits say their precision
+TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic", "tshark-x", "pymodbus"])  # formats whose records may carry times
+TIMED_TEXTS = ("hexdump", "traffic", "tshark-x", "pymodbus")  # of those, texts: their times' digits say their precision
 
 Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], Callable[[], Any], bool, Fix,
               tuple[str | None, str | None], "PacketInterface | None", "Callable[[], Any] | None", int | None, Any]

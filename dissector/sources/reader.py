@@ -34,6 +34,7 @@ from dissector.sources.libmodbus import looks_like_libmodbus, read_libmodbus
 from dissector.sources.packetdump import looks_like_packet_dump, read_packet_dump
 from dissector.sources.notation import DECIMAL, HEX, Notation
 from dissector.sources.pcap import is_pcap, read_pcap
+from dissector.sources.pymodbus_log import looks_like_pymodbus, read_pymodbus
 from dissector.sources.pcapng import is_pcapng, read_pcapng
 from dissector.sources.traffic import looks_like_traffic, read_traffic
 from dissector.model import Chunk, Stamp
@@ -43,11 +44,12 @@ __all__ = ["FORMATS", "Source", "SourceError", "detect_format", "open_source"]
 # --format values -> Source.format
 FORMATS = {"raw": "raw", "pcap": "pcap", "pcapng": "pcapng", "hex": "hexdump", "hexdump": "hexdump",
            "decimal": "hexdump", "ascii": "ascii", "xxd": "xxd", "hexdump-C": "hexdump-C", "od": "od", "traffic": "traffic",
-           "tshark-x": "tshark-x", "libmodbus": "libmodbus"}
+           "tshark-x": "tshark-x", "libmodbus": "libmodbus", "pymodbus": "pymodbus"}
 # A format given for a one-frame-a-line dump also says how its numbers are written.
 NOTATIONS = {"hex": HEX, "hexdump": HEX, "decimal": DECIMAL}
 MODES = ("rtu", "ascii")
-TEXT_FORMATS = frozenset({"hexdump", "xxd", "hexdump-C", "od", "traffic", "ascii", "tshark-x", "libmodbus"})  # read as text when a BOM says so
+TEXT_FORMATS = frozenset({"hexdump", "xxd", "hexdump-C", "od", "traffic", "ascii", "tshark-x", "libmodbus",
+                          "pymodbus"})  # read as text when a BOM says so
 SNIFF_BYTES = 512  # enough to see a magic number or a few text lines
 SNIFF_LINES = 4  # a text sample with this many lines is enough to judge
 SNIFF_COMMENTS = 65536  # but a hex dump's header of comments is read to its first data line, this far
@@ -77,6 +79,7 @@ READERS: dict[str, Reader] = {
     "traffic": read_traffic,  # Modbus Poll / Modbus Slave traffic logs
     "tshark-x": read_packet_dump,  # tshark -x, vw3-decode -x
     "libmodbus": read_libmodbus,  # libmodbus debug output, mbpoll -v
+    "pymodbus": read_pymodbus,  # pymodbus debug logs: send:/recv: lines
 }
 
 
@@ -134,6 +137,8 @@ def detect_format(sample: bytes, complete: bool) -> tuple[str, str | None]:
         return "hexdump", None
     if looks_like_libmodbus(text, complete):  # (its program's lines between the frames are no hex dump's)
         return "libmodbus", None
+    if looks_like_pymodbus(text, complete):  # (before the hex dump's `most`: its 0x.. lines follow a logging prefix)
+        return "pymodbus", None
     # Most lines of a format and a few not (a typo, a cut line, a note without `#`): that format, whose
     # reader names the line it refuses, rather than the text's characters decoded as bytes.
     if looks_like_traffic(text, complete, most=True):

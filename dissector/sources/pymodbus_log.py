@@ -1,0 +1,113 @@
+"""pymodbus debug logs (pymodbus_apply_logging_config(logging.DEBUG), or any logging set to DEBUG): the
+bytes its transport wrote and read, one `send:` or `recv:` line each, in pymodbus's `0x..` notation.
+
+    2026-12-07 14:53:39,224 DEBUG transport:357 send: 0x7 0x3 0x0 0x0 0x0 0x3 0x5 0xad
+    2026-12-07 14:53:39,225 DEBUG transport:308 recv: 0x7 0x3 0x6 0x0 0x0 0x0 0x1 0x0 0x2 0xda 0xd4 extra data:
+    2026-12-07 14:53:39,225 DEBUG base:76 Processing: 0x7 0x3 0x6 0x0 0x0 0x0 0x1 0x0 0x2 0xda 0xd4
+    DEBUG:pymodbus.logging:send: 0x7 0x3 ...        (logging.basicConfig's format: untimed)
+
+Only `send:` and `recv:` are the wire (its async transport's, which a server and an async client use; a sync
+client logs no bytes but the framer's, and is said to): `Processing:` is the framer's buffer (bytes a recv line gave, again),
+`extra data:` (`old_data:` in earlier 3.x versions) after a recv the bytes held over from before it (given by an
+earlier recv), and pymodbus's
+other lines (connecting, decoded PDUs, tracebacks) are passed over. Each line is timed by the stamp it starts
+with (logging's `2026-12-07 14:53:39,225`: to the millisecond, when the call returned). A send is a whole frame
+(pymodbus writes a frame at once); a recv is what one read returned, maybe part of a frame, so a run of
+recv lines ends a frame only where the program turns to sending (or the log ends): the line after decides.
+The direction decides nothing more: the framer tells a request from an answer, as for any capture.
+"""
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+
+from dissector.model import Chunk, Stamp
+from dissector.sources.common import Input, SourceError, WarningLog
+from dissector.sources.hexdump import Days, HexLineError, StampedLines, _timestamp, cut_short, ended_lines
+
+# `send: 0x7 0x3 ...`, `recv: 0x7 ... extra data: 0x..` (also upper case, as pymodbus 2 wrote them), after the
+# logging prefix: a space, or the `:` of basicConfig's `DEBUG:pymodbus.logging:send: ...`.
+_WIRE = re.compile(r"(?:^|[\s:])(send|recv): ?(.*)$", re.IGNORECASE)
+_BYTE = re.compile(r"0x([0-9A-Fa-f]{1,2})")
+_NUMBER = re.compile(r"0x[0-9A-Fa-f]*")
+# What follows the bytes: pymodbus 3.6 on `extra data: 0x..`, earlier 3.x `old_data: 0x.. addr=None`.
+_LABEL = re.compile(r"(?:extra|[A-Za-z_]\w*[:=])")
+_BUFFER = re.compile(r"\bProcessing: 0x")
+# pymodbus's own line format (its pymodbus_apply_logging_config), for a log whose first lines carry no bytes.
+_OWN = re.compile(r"\d{4}-\d\d-\d\d \d\d:\d\d:\d\d,\d{3} (?:DEBUG|INFO |WARNING|ERROR|CRITICAL) \w+:\d+ .*")
+
+
+def wire_line(line: str) -> tuple[str, list[str], bool] | None:
+    """("send" or "recv", the byte tokens, whether a label follows them: they are whole) of a line with bytes
+    pymodbus wrote or read, else None. A token neither a number nor a label is kept, for the reader to name."""
+    found = _WIRE.search(line.rstrip("\r\n"))
+    if found is None:
+        return None
+    tokens = found.group(2).split()
+    if not tokens or _BYTE.fullmatch(tokens[0]) is None:
+        return None
+    count = next((index for index, token in enumerate(tokens) if not _NUMBER.fullmatch(token)), len(tokens))
+    labelled = count < len(tokens) and _LABEL.match(tokens[count]) is not None
+    return found.group(1).lower(), tokens[:count] if labelled else tokens, labelled
+
+
+def looks_like_pymodbus(text: str, complete: bool) -> bool:
+    """Does `text` (the input's first bytes; its last line left out unless `complete`) hold a send:/recv:
+    line, or a line in pymodbus's own log format?"""
+    lines = text.splitlines()
+    if not complete and not text.endswith(("\n", "\r")):
+        lines = lines[:-1]
+    return any(wire_line(line) is not None or _OWN.fullmatch(line) for line in lines)
+
+
+def _bytes(tokens: list[str], where: str) -> bytes:
+    for token in tokens:
+        if _BYTE.fullmatch(token) is None:
+            raise SourceError(f"{where}: {token[:24]!r} is not a byte in pymodbus's 0x.. notation")
+    return bytes(int(token, 16) for token in tokens)
+
+
+def _time(line: str, where: str) -> Stamp | None:
+    """The stamp the line starts with (logging's date and time, or a time of day), None for none."""
+    try:
+        return _timestamp(line.split()[:2])[0]
+    except HexLineError as error:  # (one that does not exist, `2026-02-30 ...`: the line is refused, as a dump's)
+        raise SourceError(f"{where}: {error}") from None
+
+
+def read_pymodbus(inp: Input, log: WarningLog, chunk_size: int) -> StampedLines:
+    return StampedLines(_chunks(inp, log, chunk_size))
+
+
+def _chunks(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
+    days = Days()
+    held: Chunk | None = None  # a recv line's bytes, until the next wire line says whether a frame ends there
+    found = buffered = False
+    for number, line, ended in ended_lines(inp, chunk_size):
+        wire = wire_line(line)
+        if wire is None:
+            buffered = buffered or _BUFFER.search(line) is not None
+            continue
+        direction, tokens, labelled = wire
+        if not ended and not labelled:  # the last number may be cut (`0xd` of `0xda`): not read
+            data = _bytes(tokens[:-1], f"{inp.name} line {number}")
+            log.warn("truncated input", cut_short(inp.name, number, data, tokens[-1]))
+        else:
+            data = _bytes(tokens, f"{inp.name} line {number}")
+        found = True
+        if held is not None:
+            yield Chunk(held.data, held.time, direction == "send")
+            held = None
+        chunk = Chunk(data, days.place(_time(line, f"{inp.name} line {number}")), True)  # type: ignore[arg-type]
+        if data and direction == "send":
+            yield chunk
+        elif data:
+            held = chunk
+    if held is not None:
+        yield held
+    if not found and buffered:
+        log.warn("empty", f"{inp.name}: no send: or recv: line, only the framer's Processing: buffers, which repeat "
+                          "bytes and hold no request sent (pymodbus's sync clients log no more): log an async client "
+                          "or the server, or capture the line")
+    elif not found:  # (--format pymodbus on another text: every line passed over, said, not silent)
+        log.warn("empty", f"{inp.name}: no send: or recv: line of a pymodbus debug log")
