@@ -18,11 +18,11 @@ from dissector.render.pcapwriter import NANOS, finer_than_micros
 
 # -t value -> what tshark calls it (for --help and error messages)
 TIME_FORMATS: dict[str, str] = {
-    "r": "relative to the first item",
+    "r": "relative to the first item (a network or several-interface capture: its first packet)",
     "a": "local time of day",
     "ad": "local date and time",
     "adoy": "local year/day of the year and time",
-    "d": "delta from the previous item captured",
+    "d": "delta from the previous item captured (a network or several-interface capture: the packet before)",
     "dd": "delta from the previous item displayed",
     "e": "seconds since the epoch",
     "u": "UTC time of day",
