@@ -1,8 +1,6 @@
 -- vw3.tree: Wireshark: a frame's registers, bits and PDU fields (show.lua show_frame), and its Info text.
 -- Mirrors dissector/render/detail.py, dissector/render/summary.py, dissector/render/describe.py (Info forms).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.tree"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- `1 byte`, `2 bytes`: a count and its noun, singular for one (describe.count_text).
 local function count_text(count, noun)
