@@ -1,8 +1,8 @@
 """FC12's events as a field in the plugin as in vw3-decode: vw3-decode's derived key fields.event_list (one
 occurrence an event, its byte, as tshark's Modbus/TCP modbus.event: render/filter_fields.py DERIVED_KEYS) is
 the plugin's vw3.event_list (codegen/fields_lua.py derived_fields, the vw3.X of vw3-decode's fields.X), so
--T fields writes the same values and a -Y filter finds the same frames. Before, tshark said
-`Some fields aren't valid: vw3.event_list`. Real tshark with -X lua_script:lua/vw3.lua."""
+-T fields writes the same values and a -Y filter finds the same frames. Before, tshark refused the name
+(`Some fields aren't valid: vw3.event_list`). Real tshark with -X lua_script:lua/vw3.lua."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -18,7 +18,7 @@ pytestmark = pytest.mark.integration
 
 T0 = 1767225600.0
 # An FC12 request and its answer (events 3, 32, 1, 64: newest first), then an answer with no event.
-FRAMES = ["010C", "010C0A000001000200032001" "40", "010C", "010C06FFFF00080009"]
+FRAMES = ["010C", "010C0A00000100020003200140", "010C", "010C06FFFF00080009"]
 
 
 def _pcap(tmp_path: Path) -> Path:
