@@ -1915,6 +1915,13 @@ local DATA = {
         ["help"] = "FC17 server id longer than one byte",
         ["plain"] = true,
       },
+      {
+        ["abbr"] = "vw3.event_list",
+        ["ftype"] = "uint8",
+        ["title"] = "Event list",
+        ["help"] = "PDU key of function 12",
+        ["base"] = "DEC",
+      },
     },
     ["experts"] = {
       {
@@ -10147,7 +10154,7 @@ end
 -- FC12's events (b[at..at+size-1], newest first) named as vw3-decode -V names them: DATA.comm_events[byte], its
 -- name and kind (decode/fields.py comm_event, event_kind: data/modbus.toml [names.comm_event*]); an event of a
 -- kind each bit of that kind, set or not, as tshark -V (DATA.event_bits: decode/fields.py event_bit_lines).
--- (Text items: the bytes' field is vw3.events.)
+-- Each byte is vw3.event_list, vw3-decode's fields.event_list (tshark's modbus.event), labelled as -V writes it.
 local function set(byte, mask) return floor(byte / mask) % 2 == 1 end -- (mask: a power of two)
 
 local function add_events(t, tvb, f, b, at, size)
@@ -10155,7 +10162,7 @@ local function add_events(t, tvb, f, b, at, size)
   for k = 0, size - 1 do
     local byte, range = b[at + k], frame_range(tvb, f, at + k, 1)
     local item, event = list:add(range, format("[%d]", k)), DATA.comm_events[byte]
-    item:add(range, format("Byte: %d (0x%X)", byte, byte))
+    item:add(pf.event_list, range, byte, format("Byte: %d (0x%X)", byte, byte))
     item:add(range, "Event: " .. event[1])
     if event[2] > 0 then
       local under = item:add(range, "Flags")

@@ -17,7 +17,7 @@ from typing import Any
 
 from dissector.errors import GenerateError
 from dissector.protocol.spec import SPEC
-from dissector.render.filter_fields import CATALOGUE
+from dissector.render.filter_fields import CATALOGUE, DERIVED_KEYS, owners_text
 
 # ProtoField constructors by their arguments: (abbr, title, base, values, mask, help) or (abbr, title, help)
 INTEGER = frozenset({"uint8", "uint16", "uint32", "bool", "framenum"})
@@ -115,9 +115,10 @@ def preferences() -> list[dict[str, Any]]:
 
 
 def proto_fields() -> list[dict[str, Any]]:
-    """One table a plugin field, in the catalogue's order: {abbr, ftype, title, help, [base], [values]}."""
+    """One table a plugin field, in the catalogue's order, then the decode's derived keys' (derived_fields):
+    {abbr, ftype, title, help, [base], [values]}."""
     out = []
-    for entry in CATALOGUE + _pdu_catalogue()["field"]:
+    for entry in CATALOGUE + _pdu_catalogue()["field"] + derived_fields():
         if "filter" not in entry:
             continue
         ftype = entry["ftype"]
@@ -134,7 +135,7 @@ def proto_fields() -> list[dict[str, Any]]:
                 # (a value-string table: TOML keys are strings, Wireshark's are the numbers)
                 field[key] = {int(k): v for k, v in value.items()} if isinstance(value, dict) else value
         out.append(field)
-    names = [pf_name(entry) for entry in CATALOGUE + _pdu_catalogue()["field"] if "filter" in entry]
+    names = [pf_name(entry) for entry in CATALOGUE + _pdu_catalogue()["field"] + derived_fields() if "filter" in entry]
     for name in {name for name in names if names.count(name) > 1}:
         raise GenerateError(f"data/pdu_fields.toml: two fields named {name}: give one a `name`")
     # (Wireshark's filters take a shared name's type from the field registered last, lua/src/fields.lua: the
@@ -146,6 +147,18 @@ def proto_fields() -> list[dict[str, Any]]:
             raise GenerateError(f"data/pdu_fields.toml: {field['abbr']}: list its widest field last")
         widest[field["abbr"]] = width
     return out
+
+
+def derived_fields() -> list[dict[str, Any]]:
+    """A field per key the decode adds to a PDU's fields beyond its layout's (render/filter_fields.py
+    DERIVED_KEYS: FC12's fields.event_list), as vw3.KEY, the plugin's name of fields.KEY (filter_fields
+    foreign_name), of its elements' type, titled as -V labels the key, its help vw3-decode's -G fields blurb;
+    base DEC, -G fields' base of fields.KEY, so -T fields writes the values as vw3-decode's (modbus.event's).
+    lua/src/tree.lua adds it."""
+    from dissector.render.detail import field_label
+
+    return [{"filter": f"vw3.{key}", "ftype": ftype, "title": field_label(key), "base": "DEC",
+             "help": owners_text((owner,))} for key, (owner, _value, ftype) in DERIVED_KEYS.items()]
 
 
 def pf_name(entry: dict[str, Any]) -> str:

@@ -6,7 +6,8 @@ from the same sources the Python side loads, never copied by hand, between two m
 is hand-written in lua/src/: one module a stage (each names the Python module it mirrors), and
 lua/src/main.lua, the entry, which lists them in load order (PURE: no Wireshark API, then WIRESHARK).
 lua/vw3.lua is their assembly, one installable file: main.lua's header comment, the generated data,
-each module as a function in package.preload["vw3.NAME"] (obtained with require), then main.lua's body.
+each module as a function in package.preload["vw3.NAME"] (obtained with require), begun by the lines that say
+how it sees the names the modules share (ENV_LINES) and its bindings of those it uses, then main.lua's body.
 
     python3 -m dissector.codegen.lua            # rewrite lua/vw3.lua
     python3 -m dissector.codegen.lua --check    # exit 1 when lua/vw3.lua is not that assembly
@@ -401,7 +402,12 @@ LUA_GLOBALS = frozenset("""
     ByteArray DESEGMENT_ONE_MORE_SEGMENT DissectorTable NSTime Pref Proto ProtoExpert ProtoField base expert
     frametype wtap
 """.split())
-ENV_LINE = "local _ENV = M"
+# How every module sees the names it shares (main.lua's vw3.env: DATA, the modules' exports, then the globals),
+# written by the generator at its head, after its `-- Assembled into` line (ASSEMBLED), so that no module
+# restates it; the locals the module uses are bound after them (module_bindings).
+ENV_LINES = ('local M = require("vw3.env")', "local _ENV = M -- (the globals and the other modules' exports; "
+             "the generator binds those used here as locals)")
+ASSEMBLED = "-- Assembled into lua/vw3.lua by python3 -m dissector.codegen"
 _STRING_OR_COMMENT = re.compile(r"--\[(=*)\[.*?\]\1\]|--[^\n]*|\[(=*)\[.*?\]\2\]|\"(?:\\.|[^\"\\\n])*\"|'(?:\\.|[^'\\\n])*'",
                                 re.S)
 # (a number, `..`, or a field `.name`/`:name` is matched whole, so that only names used as names remain)
@@ -477,7 +483,7 @@ def export_lines(text: str, names: list[str]) -> list[str]:
 
 def module_bindings(name: str, text: str, available: set[str]) -> list[str]:
     """The lines that bind as locals what module `name` uses of the globals and of the earlier modules'
-    exports (`available`), in sorted order, after its `local _ENV = M` line. Refused: a module that
+    exports (`available`), in sorted order, after its ENV_LINES. Refused: a module that
     assigns such a name (it would assign the local, not the shared name)."""
     code = _code_only(text)
     # (a global the module also names as a local or a parameter somewhere, as `base`, is left unbound: the
@@ -531,10 +537,16 @@ def render_plugin(src: Path = SRC) -> str:
     later_free.reverse()
     for index, (name, text) in enumerate(zip(names, texts)):
         lines = text.rstrip("\n").split("\n")
-        at = next((number for number, line in enumerate(lines) if line.startswith(ENV_LINE)), None)
+        at = next((number for number, line in enumerate(lines) if not line.startswith("--")), len(lines))
+        at = next((number for number, line in enumerate(lines[:at]) if line.startswith(ASSEMBLED)), None)
         if at is None:
-            raise GenerateError(f"{src / name}.lua: no `{ENV_LINE}` line (after which the generator binds what it uses)")
-        lines[at + 1:at + 1] = module_bindings(name, text, available)
+            raise GenerateError(f"{src / name}.lua: no `{ASSEMBLED}` line in its head comment (after which the "
+                                "generator writes how it sees the shared names and binds what it uses)")
+        own = [line for line in lines if line.split(" --")[0] in [env.split(" --")[0] for env in ENV_LINES]]
+        if own:
+            raise GenerateError(f"{src / name}.lua: its own `{own[0]}`: the generator writes how a module sees the "
+                                "shared names")
+        lines[at + 1:at + 1] = [*ENV_LINES, *module_bindings(name, text, available)]
         exports = module_exports(text, later_free[index])
         lines += export_lines(text, exports)
         available.update(exports)

@@ -1,8 +1,6 @@
 -- vw3.annotator: a frame annotated with its device; the per-capture state.
 -- Mirrors dissector/devices/annotator.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.annotator"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- The codes whose echo confirms masks applied to the value held ([confirm] "mask": FC22).
 local MASK_WRITES = DATA.rules.by_confirm.mask

@@ -1,8 +1,6 @@
 -- vw3.ascii: ASCII framing: ':' ... CR LF lines, LRC, the mode of a capture.
 -- Mirrors dissector/framing/ascii.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.ascii"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 -- (the catalogue's texts, data/modbus.toml [texts]: warnings, noise reasons; TEXT: those without parameters,
 -- filled in; the others' formats take them in the text's order)
 local TEXTS, TEXT = DATA.rules.texts, DATA.plain_texts

@@ -1,8 +1,6 @@
 -- vw3.clock: Wireshark: record times in exact nanoseconds; pinfo's fields read through Wireshark's own getters.
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.clock"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- Wireshark's functions behind pinfo's fields, TreeItem.text and tvb:raw(), called directly: wslua reaches a
 -- field through an __index function that looks the name up first (pinfo.port_type: some 1,120 machine

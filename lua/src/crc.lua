@@ -1,8 +1,6 @@
 -- vw3.crc: CRC-16/MODBUS on table lookups (no bitwise operators: the same on Lua 5.2 and 5.4).
 -- Mirrors dissector/protocol/crc.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.crc"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 local floor = math.floor
 local format = string.format

@@ -1,8 +1,6 @@
 -- vw3.decode: decoding a frame's fields per function code: grammars, handlers, spec limits.
 -- Mirrors dissector/decode/fields.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.decode"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local RULES = DATA.rules
 
 -- ---------------------------------------------------------------------------------------------------

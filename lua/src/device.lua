@@ -1,8 +1,6 @@
 -- vw3.device: a slave's device: its profile, rows, PLC labels; values interpreted by the map.
 -- Mirrors dissector/devices/build.py, dissector/devices/maps.py (interpret).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.device"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- naming.plc_label: `40001 + address` up to 49999, then 6-digit references (`400001 + address`); coil
 -- references keep their zeros (00001). PLC_LABELS[base][address], each label made once (at most 65,536

@@ -1,8 +1,6 @@
 -- vw3.dissector: Wireshark: the dissectors (serial records, RTU over TCP and UDP), registration.
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.dissector"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- A stream's mode, where no preference sets it, is told from its first bytes as vw3-decode tells it
 -- (protocol/ascii.py sample_mode: MODE_SAMPLE bytes, up to MODE_REACH after line noise), and those may

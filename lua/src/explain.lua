@@ -1,8 +1,6 @@
 -- vw3.explain: device checks of requests, exceptions explained, device objects and diagnostics.
 -- Mirrors dissector/devices/checks.py, dissector/devices/explain.py, dissector/devices/objects.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.explain"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- Each quantity request f's lifting rule checks (FC23: read and write, as the spec's checks name them; without
 -- its fields, as vw3_modbus.lua remembers a request, its quantity) with the device's limit for it (nil: none):

@@ -1,8 +1,6 @@
 -- vw3.feed: feeding records to the framers (whole-record frames first), what stays buffered.
 -- Mirrors dissector/framing/stream.py (feed, finish).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.feed"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 local NO_BYTES = {} -- (the buffer once every byte is framed: never written to)
 

@@ -1,8 +1,6 @@
 -- vw3.fields: Wireshark: the protocol, its fields, expert infos and preferences.
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.fields"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 

@@ -1,8 +1,6 @@
 -- vw3.layouts: the length rules of every function code, and which layouts a slave's code may have.
 -- Mirrors dissector/protocol/table.py (the rules codegen writes into DATA.protocol).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.layouts"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- ---------------------------------------------------------------------------------------------------
 -- Framing (dissector/framing/rtu.py): length rules per function code and direction, CRC to confirm.

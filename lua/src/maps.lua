@@ -1,8 +1,6 @@
 -- vw3.maps: the profile and map preferences, register maps read from CSV.
 -- Mirrors dissector/devices/maps.py, dissector/devices/profiles.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.maps"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 
 -- ---------------------------------------------------------------------------------------------------

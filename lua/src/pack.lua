@@ -1,8 +1,6 @@
 -- vw3.pack: what a record keeps of its frames for the later passes, packed (no Python counterpart: the plugin keeps every record for Wireshark's later dissections).
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pack"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- What a record keeps of a frame for the later passes, packed: numbers, slots of one flat array per
 -- stream (st.flat), the item being the number of its first slot. A table with named keys keeps the hash

@@ -1,8 +1,6 @@
 -- vw3.pairing: requests and responses paired, timeouts.
 -- Mirrors dissector/decode/pairing.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pairing"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local PLAIN = DATA.plain_texts -- (the catalogue's texts without parameters: unmatched, never_answered, ...)
 local ECHO = DATA.pairing.echo
 -- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once by NS

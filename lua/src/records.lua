@@ -1,8 +1,6 @@
 -- vw3.records: one record: framed, paired, decoded and annotated in order; the quick lanes.
 -- Mirrors dissector/pipeline.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.records"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).

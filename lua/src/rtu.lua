@@ -1,8 +1,6 @@
 -- vw3.rtu: RTU framing: frames by their length rules and CRC, damaged frames, CRC scans, the line's evidence.
 -- Mirrors dissector/framing/rtu.py, dissector/framing/reach.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 
 -- Does a layout at i check out and end where its record does (a code without a length rule: its CRC checks at

@@ -1,8 +1,6 @@
 -- vw3.show: Wireshark: a frame's item and a record's items shown, a record's first dissection, the first pass's end.
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.show"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local UNMATCHED = say("unmatched", {}) -- (data/modbus.toml [texts])
 -- The window's start or quantity (what) on the bytes its lifting rule read it from; generated and on no
 -- bytes where the frame does not hold it (a read's answer: its request's; FC5's and FC6's quantity of one).

@@ -1,8 +1,6 @@
 -- vw3.story: the parameter story (became protected, readable again) and registers annotated.
 -- Mirrors dissector/devices/story.py, dissector/devices/memory.py, dissector/devices/annotator.py (registers).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.story"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.

@@ -1,8 +1,6 @@
 -- vw3.stream: the byte stream the framers read: record boundaries and times, noise runs, the glitch rule.
 -- Mirrors dissector/framing/stream.py, dissector/framing/evidence.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.stream"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request): a record that is the usual answer to the

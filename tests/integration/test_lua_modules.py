@@ -106,7 +106,8 @@ def test_modules_are_small_stages_that_name_their_python_module() -> None:
             mirrored.add(module)
         assert head[2] == (f"-- Assembled into lua/vw3.lua by python3 -m dissector.codegen "
                            f'(package.preload["vw3.{path.stem}"]).'), (path.name, head[2])
-        assert 'require("vw3.env")' in text
+        # (the generator writes how a module sees the shared names, vw3.env: codegen/lua.py ENV_LINES)
+        assert not re.search(r"^local (M|_ENV) = ", text, re.M), path.name
     # the stages of the Python pipeline the plugin runs, each held by a module
     assert {"dissector/framing/rtu.py", "dissector/framing/ascii.py", "dissector/framing/stream.py",
             "dissector/decode/pairing.py", "dissector/decode/fields.py", "dissector/devices/selection.py",
@@ -144,16 +145,24 @@ def test_check_fails_when_vw3_lua_is_not_the_assembly(tmp_path: Path, capsys: py
 
 
 def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    """After a module's `local _ENV = M`, the generator binds as locals what it uses of the earlier modules'
-    exports and of the globals (the pairing module: DATA, format, next and table; EXCEPTION, REQUEST and RESPONSE from
-    layouts; awaits_answer and NS from stream; note, release_run, say, string_of and warn from decode);
+    """After a module's head comment the generator writes how it sees the shared names (`local M =
+    require("vw3.env")`, `local _ENV = M`: every module alike, none restates them) and binds as locals what
+    it uses of the earlier modules' exports and of the globals (the pairing module: DATA, format, next and table;
+    EXCEPTION, REQUEST and RESPONSE from layouts; awaits_answer and NS from stream; note, release_run, say, string_of and warn from decode);
     at its end it exports the module's top-level locals a later module names (pairing's pair and pair_part, which records
     calls, and ended, which show calls; not layouts' `select`, a length rule's maker, which would hide Lua's select from the later modules),
-    besides the module's own export lines; and refuses a module that assigns such a name or an export line
-    that exports a name as another."""
+    besides the module's own export lines; and refuses a module that assigns such a name, an export line
+    that exports a name as another, a module with its own environment lines and one whose head has no
+    `-- Assembled into` line to write them after."""
     plugin = PLUGIN.read_text(encoding="utf-8")
+    env = ('\nlocal M = require("vw3.env")\nlocal _ENV = M -- (the globals and the other modules\' exports; the generator '
+           "binds those used here as locals)\n")
+    for name in PURE + WIRESHARK:  # (each module in vw3.lua: its head, then the same two lines)
+        assert plugin.count(f'(package.preload["vw3.{name}"]).{env}') == 1, name
     pairing = plugin.split('package.preload["vw3.pairing"] = function(...)\n')[1]
-    assert pairing.split("\n")[4:8] == [
+    assert pairing.split("\n")[2:8] == [
+        '-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pairing"]).',
+        'local M = require("vw3.env")',
         "local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)",
         "local DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer",
         "local format, next, note, part_reason, release_run, say = format, next, note, part_reason, release_run, say",
@@ -169,7 +178,11 @@ def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytes
             ("pairing", "  if f.kind == REQUEST then", "  warn = nil\n  if f.kind == REQUEST then",
              "lua/src/pairing.lua assigns warn"),
             ("maps", "M.parse_map = parse_map", "M.parse_map = warn",
-             "an export line does not export each name as itself: M.parse_map = warn")):
+             "an export line does not export each name as itself: M.parse_map = warn"),
+            ("crc", '(package.preload["vw3.crc"]).', '(package.preload["vw3.crc"]).\nlocal M = require("vw3.env")',
+             'crc.lua: its own `local M = require("vw3.env")`: the generator writes how a module sees'),
+            ("crc", "-- Assembled into", "-- Put into",
+             "crc.lua: no `-- Assembled into lua/vw3.lua by python3 -m dissector.codegen` line in its head")):
         shutil.rmtree(src, ignore_errors=True)
         shutil.copytree(SRC, src)
         path = src / f"{module}.lua"
@@ -205,15 +218,15 @@ def test_the_codegen_command_checks_the_assembly_of_a_copy(tmp_path: Path) -> No
     # a module edited and not assembled again
     plugin.write_text(original_plugin, encoding="utf-8")
     assert check() == (0, "", "")
-    head, body = original_story.split("\nlocal M = ", 1)
-    story.write_text(head + "\n-- an edit\nlocal M = " + body, encoding="utf-8")
+    head, body = original_story.split("\n\n", 1)
+    story.write_text(head + "\n\n-- an edit\n" + body, encoding="utf-8")
     assert check() == (1, "", stale)
     # assembled again: the module's edit is in vw3.lua, and the check holds
     done = subprocess.run([sys.executable, "-m", "dissector.codegen"], cwd=copy,
                           env={**os.environ, "PYTHONPATH": str(copy)}, capture_output=True, text=True, timeout=300)
     assert done.returncode == 0 and f"{plugin}: updated\n" in done.stdout, (done.stdout, done.stderr)
     assert check() == (0, "", "")
-    assert "\n-- an edit\nlocal M = " in plugin.read_text(encoding="utf-8")
+    assert "\n\n-- an edit\n" in plugin.read_text(encoding="utf-8")
     # the generated data edited by hand (between its markers)
     data = plugin.read_text(encoding="utf-8")
     assert data.count('[3] = "Read Holding Registers",') == 1
