@@ -85,6 +85,7 @@ class CaptureFiles:
         self._raw: BinaryIO | None = None
         self.last_time: Stamp | None = None  # the time of the last item written (-c: where the capture stops)
         self._closed = False
+        self._held: list[Item] = []  # a noise run waiting for the item after it (items)
         if raw_path:
             try:
                 # Unbuffered: each read is one write(2), on disk before its frames are shown.
@@ -104,7 +105,35 @@ class CaptureFiles:
             except OSError as error:
                 self._failed(self._raw_path, error)
 
-    def items(self, items: list[Item]) -> None:
+    def items(self, items: list[Item]) -> list[Item]:
+        """Write `items`; the ones to show now, written. A noise run last (RTU, -w) is held, neither
+        written nor shown, until the item after it comes (_records may join them) or the line has been
+        silent t3.5 after it (release): so the records do not hang on how the reads came in batches. The
+        Python path writes its framer's items a read at a time, the compiled one the items it shows, a
+        request with its answer: `answer 00 request` in one read (a busy machine) was one record `00
+        request` in one, `00` a record of its own in the other, read back as a pause after the glitch."""
+        if self._held:
+            items, self._held = self._held + items, []
+        if (items and self.output is not None and self._timing is not None and isinstance(items[-1], Noise)
+                and items[-1].time is not None):
+            self._held = [items.pop()]
+        self._write(items)
+        return items
+
+    def release(self, now: Stamp | None) -> list[Item]:
+        """The noise run held (items), written, if no item can join it any more: the line silent t3.5
+        after it before `now` (no byte before it unread), or `now` None (the capture ends)."""
+        if not self._held:
+            return []
+        noise, timing = self._held[0], self._timing
+        if now is not None and timing is not None and line_silence(
+                noise.offset, noise.time, noise.offset + noise.length, now, timing) < timing.t35:  # type: ignore[arg-type]
+            return []
+        held, self._held = self._held, []
+        self._write(held)
+        return held
+
+    def _write(self, items: list[Item]) -> None:
         if items and isinstance(items[-1].time, Stamp):
             self.last_time = items[-1].time
         if self.output is not None:
@@ -178,6 +207,9 @@ class CaptureFiles:
         """Close both; -w ends with a record of no byte at `stopped`, when the capture stopped (a file
         records no other sign of it): its decode judges the last request's wait as live does. Not after
         nothing: with no record before it, it would time nothing."""
+        if not self._closed:
+            with contextlib.suppress(LiveError):
+                self.release(None)  # (its items are shown before: CaptureThread.end, live.display_once)
         output, raw = self.output, self._raw
         self._raw = None
         ended = stopped is not None and self.last_time is not None and not self._closed
@@ -322,10 +354,13 @@ class CaptureThread:
         """Write, then hand on; False once --count items are written."""
         if self.count is not None:
             items = up_to_items(items, self.count - self.frames)[0]
-        self.files.items(items)
         self.frames += len(items)  # (-c counts items: frames and noise runs)
-        self.handoff.put(items, safe)
-        return self.count is None or self.frames < self.count
+        going = self.count is None or self.frames < self.count
+        shown = self.files.items(items)
+        if not going:  # (nothing follows: the noise run held is written now)
+            shown += self.files.release(None)
+        self.handoff.put(shown, safe)
+        return going
 
     def safe_time(self, now: float) -> float:
         """No frame still to come starts before this: the held bytes' time, or now."""
@@ -362,6 +397,8 @@ class CaptureThread:
                 self.deliver(self.framer.finish(), None)
             elif self.status != ExitStatus.OK and not self.reason.startswith("cannot write"):
                 self.deliver(self.framer.finish(), None)  # a vanished port: keep the bytes read
+            if self.framer is not None and not self.reason.startswith("cannot write"):
+                self.handoff.put(self.files.release(None), None)
         except LiveError as error:
             self.reason, self.status = str(error), error.status
         finally:
@@ -423,6 +460,9 @@ class CaptureThread:
             self._pending, self._tried = True, False
             return self.deliver(framer.feed(chunk), self.safe_time(stamp))
         safe = clock.promise(stamp)
+        released = self.files.release(safe)
+        if released:
+            self.handoff.put(released, None)
         if self._pending:
             silent = now - self._last_data
             if self.flush_due(silent, self._tried):
