@@ -252,10 +252,11 @@ class Shown:
         self.capture = capture
         self.stopped = False
 
-    def write(self, items: list[Item] | None = None, release: Stamp | None | bool = False) -> list[Item] | None:
-        """Write `items` (None: tick the files) or, with `release`, the noise run the files hold (a
-        Stamp: if the line was silent after it, None: the capture ends; CaptureFiles.release): the items
-        to show, None if the write failed (the capture stops)."""
+    def write(self, items: list[Item] | None = None,
+              release: tuple[Stamp | None, int] | bool = False) -> list[Item] | None:
+        """Write `items` (None: tick the files) or, with `release` (a time and the bytes read), the noise
+        run the files hold if no item can join it (CaptureFiles.release): the items to show, None if
+        the write failed (the capture stops)."""
         capture = self.capture
         if self.stopped:
             return None
@@ -263,7 +264,7 @@ class Shown:
             return items or []
         try:
             if release is not False:
-                return capture.files.release(release)  # type: ignore[arg-type]
+                return capture.files.release(*release)  # type: ignore[misc]
             if items is None:
                 capture.files.tick()
                 return []
@@ -274,12 +275,12 @@ class Shown:
             self.stopped = True
         return None
 
-    def release(self, now: Stamp | None) -> None:
+    def release(self, now: Stamp | None, read: int = 0) -> None:
         """Show the noise run the files held, once written (CaptureFiles.release)."""
         if self.capture is not None:
-            self.items([], now)
+            self.items([], (now, read))
 
-    def items(self, shown: list[Item], release: Stamp | None | bool = False) -> None:
+    def items(self, shown: list[Item], release: tuple[Stamp | None, int] | bool = False) -> None:
         written = self.write(shown, release)
         if written is None:
             return
@@ -346,8 +347,8 @@ def display_once(capture: CaptureThread, handoff: Handoff, dissector: Dissector,
                 capture.reason = "count"
                 capture.stop.set()
                 shown.release(None)
-            else:  # (as the capture thread at each read: CaptureThread.step)
-                shown.release(ReadClock.promise(items[-1][1]))
+            else:  # (as the capture thread at each read: CaptureThread.step, which counts the bytes read)
+                shown.release(ReadClock.promise(items[-1][1]), capture.read)
         if closed and not shown.stopped:
             dissector.pairer.end = stop_time(capture, live)
             live.finish()

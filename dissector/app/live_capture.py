@@ -120,14 +120,17 @@ class CaptureFiles:
         self._write(items)
         return items
 
-    def release(self, now: Stamp | None) -> list[Item]:
-        """The noise run held (items), written, if no item can join it any more: the line silent t3.5
-        after it before `now` (no byte before it unread), or `now` None (the capture ends)."""
+    def release(self, now: Stamp | None, read: int = 0) -> list[Item]:
+        """The noise run held (items), written, if no item can join it any more: no byte read after it
+        (`read` bytes read in all) and the line silent t3.5 after it before `now` (no byte before it
+        unread), or `now` None (the capture ends). A byte read after it starts the item it waits for
+        (which the display may show later: a request with its answer)."""
         if not self._held:
             return []
         noise, timing = self._held[0], self._timing
-        if now is not None and timing is not None and line_silence(
-                noise.offset, noise.time, noise.offset + noise.length, now, timing) < timing.t35:  # type: ignore[arg-type]
+        end = noise.offset + noise.length
+        if now is not None and (read > end or timing is None or line_silence(
+                noise.offset, noise.time, end, now, timing) < timing.t35):  # type: ignore[arg-type]
             return []
         held, self._held = self._held, []
         self._write(held)
@@ -332,6 +335,7 @@ class CaptureThread:
     closing_record: bool = True
     last_read: Stamp | None = None  # the stamp of the last read, with bytes or none
     last_bytes: Stamp | None = None  # the stamp of the last read that gave bytes (its last byte's time)
+    read: int = 0  # bytes read in all (CaptureFiles.release)
 
     def start(self) -> None:
         threading.Thread(target=self._run, name="capture", daemon=True).start()
@@ -447,6 +451,7 @@ class CaptureThread:
         self.last_read = stamp
         if data:
             self.last_bytes = stamp
+            self.read += len(data)
         framer = self.framer
         if framer is None:
             self.handoff.put([(data, stamp, now)], None)  # type: ignore[list-item]
@@ -460,7 +465,7 @@ class CaptureThread:
             self._pending, self._tried = True, False
             return self.deliver(framer.feed(chunk), self.safe_time(stamp))
         safe = clock.promise(stamp)
-        released = self.files.release(safe)
+        released = self.files.release(safe, self.read)
         if released:
             self.handoff.put(released, None)
         if self._pending:
