@@ -153,7 +153,8 @@ class CaptureFiles:
         own record read back as a damaged exception. The decode of a file joins a noise run and the damaged
         frame after it too (capturefile.CaptureOutput.write_items); here the frame may be whole: live, no
         later record says where the noise stopped. The record is at its frame's time, the noise reads back
-        at it. Nothing is held for a later batch (every record is written before its items are shown)."""
+        at it. A noise run last in a batch waits for the next (items, release); every record is written
+        before its items are shown."""
         records: list[tuple[bytes, float | None, list[str]]] = []
         after: Item | None = None  # the noise run the next item may join
         timing = self._timing
