@@ -56,7 +56,7 @@ from dissector.model import Item, Stamp
 from dissector.pipeline import Annotator, Dissector
 from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
 from dissector.sources.serial_port import PARITIES, PortSettings, open_port
-from dissector.sources.serial_times import char_time
+from dissector.sources.serial_times import ReadClock, char_time
 
 PROG = "vw3-decode"
 assert set(PARITIES) == set(PARITY_CHOICES)
@@ -252,24 +252,39 @@ class Shown:
         self.capture = capture
         self.stopped = False
 
-    def write(self, items: list[Item] | None = None) -> bool:
+    def write(self, items: list[Item] | None = None,
+              release: tuple[Stamp | None, int] | bool = False) -> list[Item] | None:
+        """Write `items` (None: tick the files) or, with `release` (a time and the bytes read), the noise
+        run the files hold if no item can join it (CaptureFiles.release): the items to show, None if
+        the write failed (the capture stops)."""
         capture = self.capture
-        if self.stopped or capture is None:
-            return not self.stopped
+        if self.stopped:
+            return None
+        if capture is None:
+            return items or []
         try:
+            if release is not False:
+                return capture.files.release(*release)  # type: ignore[misc]
             if items is None:
                 capture.files.tick()
-            else:
-                capture.files.items(items)
+                return []
+            return capture.files.items(items)
         except LiveError as error:
             capture.reason, capture.status = str(error), error.status
             capture.stop.set()
             self.stopped = True
-        return not self.stopped
+        return None
 
-    def items(self, shown: list[Item]) -> None:
-        if not self.write(shown):
+    def release(self, now: Stamp | None, read: int = 0) -> None:
+        """Show the noise run the files held, once written (CaptureFiles.release)."""
+        if self.capture is not None:
+            self.items([], (now, read))
+
+    def items(self, shown: list[Item], release: tuple[Stamp | None, int] | bool = False) -> None:
+        written = self.write(shown, release)
+        if written is None:
             return
+        shown = written
         for item in shown:
             self.stats.add(item)
         if self.observe is not None:
@@ -331,9 +346,13 @@ def display_once(capture: CaptureThread, handoff: Handoff, dissector: Dissector,
             if live.done:  # -c reached: the capture stops, as its thread stops itself on the Python path
                 capture.reason = "count"
                 capture.stop.set()
+                shown.release(None)
+            else:  # (as the capture thread at each read: CaptureThread.step, which counts the bytes read)
+                shown.release(ReadClock.promise(items[-1][1]), capture.read)
         if closed and not shown.stopped:
             dissector.pairer.end = stop_time(capture, live)
             live.finish()
+            shown.release(None)
         shown.write()  # (a -w ring switches files on time)
         sink.show([])
     else:

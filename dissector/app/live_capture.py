@@ -85,6 +85,7 @@ class CaptureFiles:
         self._raw: BinaryIO | None = None
         self.last_time: Stamp | None = None  # the time of the last item written (-c: where the capture stops)
         self._closed = False
+        self._held: list[Item] = []  # a noise run waiting for the item after it (items)
         if raw_path:
             try:
                 # Unbuffered: each read is one write(2), on disk before its frames are shown.
@@ -104,7 +105,38 @@ class CaptureFiles:
             except OSError as error:
                 self._failed(self._raw_path, error)
 
-    def items(self, items: list[Item]) -> None:
+    def items(self, items: list[Item]) -> list[Item]:
+        """Write `items`; the ones to show now, written. A noise run last (RTU, -w) is held, neither
+        written nor shown, until the item after it comes (_records may join them) or the line has been
+        silent t3.5 after it (release): so the records do not hang on how the reads came in batches. The
+        Python path writes its framer's items a read at a time, the compiled one the items it shows, a
+        request with its answer: `answer 00 request` in one read (a busy machine) was one record `00
+        request` in one, `00` a record of its own in the other, read back as a pause after the glitch."""
+        if self._held:
+            items, self._held = self._held + items, []
+        if (items and self.output is not None and self._timing is not None and isinstance(items[-1], Noise)
+                and items[-1].time is not None):
+            self._held = [items.pop()]
+        self._write(items)
+        return items
+
+    def release(self, now: Stamp | None, read: int = 0) -> list[Item]:
+        """The noise run held (items), written, if no item can join it any more: no byte read after it
+        (`read` bytes read in all) and the line silent t3.5 after it before `now` (no byte before it
+        unread), or `now` None (the capture ends). A byte read after it starts the item it waits for
+        (which the display may show later: a request with its answer)."""
+        if not self._held:
+            return []
+        noise, timing = self._held[0], self._timing
+        end = noise.offset + noise.length
+        if now is not None and (read > end or timing is None or line_silence(
+                noise.offset, noise.time, end, now, timing) < timing.t35):  # type: ignore[arg-type]
+            return []
+        held, self._held = self._held, []
+        self._write(held)
+        return held
+
+    def _write(self, items: list[Item]) -> None:
         if items and isinstance(items[-1].time, Stamp):
             self.last_time = items[-1].time
         if self.output is not None:
@@ -121,7 +153,8 @@ class CaptureFiles:
         own record read back as a damaged exception. The decode of a file joins a noise run and the damaged
         frame after it too (capturefile.CaptureOutput.write_items); here the frame may be whole: live, no
         later record says where the noise stopped. The record is at its frame's time, the noise reads back
-        at it. Nothing is held for a later batch (every record is written before its items are shown)."""
+        at it. A noise run last in a batch waits for the next (items, release); every record is written
+        before its items are shown."""
         records: list[tuple[bytes, float | None, list[str]]] = []
         after: Item | None = None  # the noise run the next item may join
         timing = self._timing
@@ -178,6 +211,9 @@ class CaptureFiles:
         """Close both; -w ends with a record of no byte at `stopped`, when the capture stopped (a file
         records no other sign of it): its decode judges the last request's wait as live does. Not after
         nothing: with no record before it, it would time nothing."""
+        if not self._closed:
+            with contextlib.suppress(LiveError):
+                self.release(None)  # (its items are shown before: CaptureThread.end, live.display_once)
         output, raw = self.output, self._raw
         self._raw = None
         ended = stopped is not None and self.last_time is not None and not self._closed
@@ -300,6 +336,7 @@ class CaptureThread:
     closing_record: bool = True
     last_read: Stamp | None = None  # the stamp of the last read, with bytes or none
     last_bytes: Stamp | None = None  # the stamp of the last read that gave bytes (its last byte's time)
+    read: int = 0  # bytes read in all (CaptureFiles.release)
 
     def start(self) -> None:
         threading.Thread(target=self._run, name="capture", daemon=True).start()
@@ -322,10 +359,13 @@ class CaptureThread:
         """Write, then hand on; False once --count items are written."""
         if self.count is not None:
             items = up_to_items(items, self.count - self.frames)[0]
-        self.files.items(items)
         self.frames += len(items)  # (-c counts items: frames and noise runs)
-        self.handoff.put(items, safe)
-        return self.count is None or self.frames < self.count
+        going = self.count is None or self.frames < self.count
+        shown = self.files.items(items)
+        if not going:  # (nothing follows: the noise run held is written now)
+            shown += self.files.release(None)
+        self.handoff.put(shown, safe)
+        return going
 
     def safe_time(self, now: float) -> float:
         """No frame still to come starts before this: the held bytes' time, or now."""
@@ -362,6 +402,8 @@ class CaptureThread:
                 self.deliver(self.framer.finish(), None)
             elif self.status != ExitStatus.OK and not self.reason.startswith("cannot write"):
                 self.deliver(self.framer.finish(), None)  # a vanished port: keep the bytes read
+            if self.framer is not None and not self.reason.startswith("cannot write"):
+                self.handoff.put(self.files.release(None), None)
         except LiveError as error:
             self.reason, self.status = str(error), error.status
         finally:
@@ -410,6 +452,7 @@ class CaptureThread:
         self.last_read = stamp
         if data:
             self.last_bytes = stamp
+            self.read += len(data)
         framer = self.framer
         if framer is None:
             self.handoff.put([(data, stamp, now)], None)  # type: ignore[list-item]
@@ -423,6 +466,9 @@ class CaptureThread:
             self._pending, self._tried = True, False
             return self.deliver(framer.feed(chunk), self.safe_time(stamp))
         safe = clock.promise(stamp)
+        released = self.files.release(safe, self.read)
+        if released:
+            self.handoff.put(released, None)
         if self._pending:
             silent = now - self._last_data
             if self.flush_due(silent, self._tried):
