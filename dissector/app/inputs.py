@@ -22,11 +22,11 @@ from dissector.render.pcapnghead import Interface, pcapng_interface
 from dissector.render.pcapngwriter import resolution_text, tsresol
 from dissector.render.pcapwriter import MICROS, NANOS, finer_than_micros
 from dissector.sources.ethernet import RtuPorts
-from dissector.sources.interfaces import PacketInterface, open_interface, packet_interfaces
+from dissector.sources.interfaces import PacketInterface, packet_interfaces
 from dissector.sources.pcap import MAGICS, is_pcap
 from dissector.sources.pcapng import IDB, SHB, _interface, is_pcapng
 from dissector.sources.pcapng import Interface as RecordedInterface
-from dissector.sources.reader import NOTATIONS, SourceError, open_source
+from dissector.sources.reader import NOTATIONS, SourceError, open_interface, open_source
 from dissector.sources.trail import Piece, RecordTrail, item_comments, observed
 
 TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic", "tshark-x", "pymodbus"])  # formats whose records may carry times

@@ -23,11 +23,11 @@ from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
 from dissector.framing.linespeed import line_settings, settings_from_text
 from dissector.sources.ethernet import RtuPorts
-from dissector.sources.interfaces import open_interface, packet_interfaces
+from dissector.sources.interfaces import packet_interfaces
 from dissector.framing.timing import GapChecker
 from dissector.pipeline import Dissector
 from dissector.render.bustiming import BusTiming
-from dissector.sources.reader import SourceError, open_source
+from dissector.sources.reader import SourceError, open_interface, open_source
 from dissector.sources.trail import RecordTrail, item_comments
 
 TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic", "tshark-x"])

@@ -151,9 +151,9 @@ def proto_fields() -> list[dict[str, Any]]:
 
 def derived_fields() -> list[dict[str, Any]]:
     """A field per key the decode adds to a PDU's fields beyond its layout's (render/filter_fields.py
-    DERIVED_KEYS: FC12's fields.event_list), as vw3.KEY, the plugin's name of fields.KEY (filter_fields
+    DERIVED_KEYS: FC12's fields.event_list), as vw3.<key>, the plugin's name of fields.<key> (filter_fields
     foreign_name), of its elements' type, titled as -V labels the key, its help vw3-decode's -G fields blurb;
-    base DEC, -G fields' base of fields.KEY, so -T fields writes the values as vw3-decode's (modbus.event's).
+    base DEC, -G fields' base of fields.<key>, so -T fields writes the values as vw3-decode's (modbus.event's).
     lua/src/tree.lua adds it."""
     from dissector.render.detail import field_label
 

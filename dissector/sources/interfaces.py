@@ -86,7 +86,7 @@ def connections(path: str, ports: RtuPorts, least: int = 2) -> list[PacketInterf
 @functools.lru_cache(maxsize=8)
 def _connections(path: str, _size: int, _mtime: int, ports: RtuPorts, least: int) -> tuple[PacketInterface, ...]:
     with open(path, "rb") as stream:
-        chunks = _network_chunks(stream, path, WarningLog(), 1 << 16, ports, None)
+        chunks = network_chunks(stream, path, WarningLog(), 1 << 16, ports, None)
         if isinstance(chunks, PcapRecords) and chunks.transport is None:  # (a serial pcap is not read here)
             return ()
         for _chunk in chunks:
@@ -181,45 +181,7 @@ def _walk(stream, size: int, path: str) -> tuple[list[PacketInterface], int, boo
     return buses, len(described), any(described[ordinal].linktype in NETWORK_LINKTYPES for ordinal in used), len(used)
 
 
-def open_interface(  # type: ignore[no-untyped-def]
-    path: str, ordinal: int, mode: str | None, chunk_size: int = 65536, tell_skipped: bool = True,
-    where: str = "", ports: RtuPorts = RtuPorts(),
-):
-    """A Source (sources/reader.py) of the packets of one interface of the pcapng file `path`
-    (`tell_skipped`: this bus warns of the interfaces carrying no serial bytes; one bus of the file does;
-    `where`: said before its warnings that number a record, the bus's title); of a network capture's
-    connection on the RTU `ports` (the `ordinal`-th of packet_interfaces')."""
-    from dissector.sources.reader import MIN_CHUNK, Source, sampled_mode
-
-    chunk_size = max(chunk_size, MIN_CHUNK)
-    connection, span, beside = None, None, False
-    if ports != RtuPorts():
-        buses = packet_interfaces(path, ports)
-        bus = next((bus for bus in buses if bus.ordinal == ordinal), None)
-        connection, span = (bus.connection, bus.span) if bus is not None else (None, None)
-        beside = any(bus.connection is not None for bus in buses)  # (a network interface's packets: its buses')
-    stream = open(path, "rb")
-    try:
-        log = WarningLog()
-        if connection is not None:
-            chunks = _network_chunks(stream, path, log, chunk_size, ports, connection, span, where)
-            form = "pcap" if isinstance(chunks, PcapRecords) else "pcapng"
-        else:
-            chunks = read_pcapng(Input(stream, path), log, chunk_size, only=ordinal, tell_skipped=tell_skipped,
-                                 where=where, ports=ports, beside=beside)
-            form = "pcapng"
-        head: list = []
-        if mode is None:  # as reader.py decides it: the first payload bytes, replayed first
-            mode, head = sampled_mode(chunks)
-        source = Source(chunks, head, form, mode, path, log, stream.close)
-        source.streaming = False
-        return source
-    except BaseException:
-        stream.close()
-        raise
-
-
-def _network_chunks(stream, path: str, log: WarningLog, chunk_size: int, ports: RtuPorts,  # type: ignore[no-untyped-def]
+def network_chunks(stream, path: str, log: WarningLog, chunk_size: int, ports: RtuPorts,  # type: ignore[no-untyped-def]
                     connection: Connection | None, span: Span | None = None, where: str = ""):
     """The chunks of a pcap or pcapng read for its network link's RTU payloads (`connection`: one's alone);
     their `transport` (sources/ethernet.py): a pcap's from its header, a pcapng's once a network packet is read;

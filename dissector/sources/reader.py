@@ -29,11 +29,11 @@ from dissector.sources.dumps import dump_tool, read_dump, refuse_words, word_dum
 from dissector.sources.ethernet import RtuPorts
 from dissector.sources.encoding import Encoding, decoded, marked, text_input
 from dissector.sources.hexdump import CONTROL, characters, looks_like_hexdump, read_hexdump
-from dissector.sources.interfaces import several_interfaces
+from dissector.sources.interfaces import network_chunks, packet_interfaces, several_interfaces
 from dissector.sources.libmodbus import looks_like_libmodbus, read_libmodbus
 from dissector.sources.packetdump import looks_like_packet_dump, read_packet_dump
 from dissector.sources.notation import DECIMAL, HEX, Notation
-from dissector.sources.pcap import is_pcap, read_pcap
+from dissector.sources.pcap import PcapRecords, is_pcap, read_pcap
 from dissector.sources.pymodbus_log import looks_like_pymodbus, read_pymodbus
 from dissector.sources.pcapng import is_pcapng, read_pcapng
 from dissector.sources.traffic import looks_like_traffic, read_traffic
@@ -401,3 +401,39 @@ def _regular(stream: BinaryIO) -> bool:
         return stat.S_ISREG(os.fstat(stream.fileno()).st_mode)
     except (OSError, ValueError, AttributeError, io.UnsupportedOperation):
         return False
+
+
+def open_interface(  # type: ignore[no-untyped-def]
+    path: str, ordinal: int, mode: str | None, chunk_size: int = 65536, tell_skipped: bool = True,
+    where: str = "", ports: RtuPorts = RtuPorts(),
+):
+    """A Source (sources/reader.py) of the packets of one interface of the pcapng file `path`
+    (`tell_skipped`: this bus warns of the interfaces carrying no serial bytes; one bus of the file does;
+    `where`: said before its warnings that number a record, the bus's title); of a network capture's
+    connection on the RTU `ports` (the `ordinal`-th of packet_interfaces')."""
+    chunk_size = max(chunk_size, MIN_CHUNK)
+    connection, span, beside = None, None, False
+    if ports != RtuPorts():
+        buses = packet_interfaces(path, ports)
+        bus = next((bus for bus in buses if bus.ordinal == ordinal), None)
+        connection, span = (bus.connection, bus.span) if bus is not None else (None, None)
+        beside = any(bus.connection is not None for bus in buses)  # (a network interface's packets: its buses')
+    stream = open(path, "rb")
+    try:
+        log = WarningLog()
+        if connection is not None:
+            chunks = network_chunks(stream, path, log, chunk_size, ports, connection, span, where)
+            form = "pcap" if isinstance(chunks, PcapRecords) else "pcapng"
+        else:
+            chunks = read_pcapng(Input(stream, path), log, chunk_size, only=ordinal, tell_skipped=tell_skipped,
+                                 where=where, ports=ports, beside=beside)
+            form = "pcapng"
+        head: list = []
+        if mode is None:  # as reader.py decides it: the first payload bytes, replayed first
+            mode, head = sampled_mode(chunks)
+        source = Source(chunks, head, form, mode, path, log, stream.close)
+        source.streaming = False
+        return source
+    except BaseException:
+        stream.close()
+        raise

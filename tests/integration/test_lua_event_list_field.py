@@ -1,6 +1,6 @@
 """FC12's events as a field in the plugin as in vw3-decode: vw3-decode's derived key fields.event_list (one
 occurrence an event, its byte, as tshark's Modbus/TCP modbus.event: render/filter_fields.py DERIVED_KEYS) is
-the plugin's vw3.event_list (codegen/fields_lua.py derived_fields, the vw3.X of vw3-decode's fields.X), so
+the plugin's vw3.event_list (codegen/fields_lua.py derived_fields, the vw3.<key> of vw3-decode's fields.<key>), so
 -T fields writes the same values and a -Y filter finds the same frames. Before, tshark refused the name
 (`Some fields aren't valid: vw3.event_list`). Real tshark with -X lua_script:lua/vw3.lua."""
 from __future__ import annotations

@@ -80,7 +80,8 @@ def test_send_and_recv_lines_are_the_wire(tmp_path: Path) -> None:
 
 
 def test_a_pipe_told_by_pymodbus_line_format() -> None:
-    """`python3 poll.py 2>&1 | vw3-decode -`: judged on its first lines, which carry no bytes yet."""
+    """A polling program's log piped in as it is written (`... 2>&1 | vw3-decode -`): judged on its first
+    lines, which carry no bytes yet."""
     first = "".join(CLIENT.splitlines(keepends=True)[:3])
     assert detect_format(first.encode(), False) == ("pymodbus", None)
     assert run_cli(["-n", "-"], stdin=CLIENT.encode())[1].count("CRC ok") == 4
