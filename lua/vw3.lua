@@ -4972,6 +4972,12 @@ local function awaited(st, b, i, n)
   return echo == nil or echo.expect ~= st.expect or code >= 128 or echo_at(echo, b, i, n)
 end
 
+-- What a frame the line bounds is, whatever length its layout takes (rules.py Awaiting._bounded_kind: rtu.lua
+-- take_bounded, an ASCII line with a good LRC): an exception by its function, else the answer awaited or a request.
+local function bounded_kind(st, b, i, n)
+  return b[i + 1] >= 128 and EXCEPTION or (awaited(st, b, i, n) and RESPONSE or REQUEST)
+end
+
 -- The interpretations at b[i], likeliest first. Without the bytes (b nil: feed_whole, classify_ascii) an
 -- echo awaited cannot be weighed: none then, and the general path frames the record.
 local function interpretations(st, slave, code, b, i, n)
@@ -5011,8 +5017,8 @@ end
 M.ECHO_CODES, M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE = ECHO_CODES, EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE
 M.MIN_ADU, M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = MIN_ADU, NEED, NOISE, NOISE_ITEM_MAX, NONE
 M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE, M.await_echo = NO_INTERPRETATION, REQUEST, RESPONSE, await_echo
-M.awaited, M.counted, M.data_bytes, M.interpretations = awaited, counted, data_bytes, interpretations
-M.possible_start = possible_start
+M.awaited, M.bounded_kind, M.counted, M.data_bytes = awaited, bounded_kind, counted, data_bytes
+M.interpretations, M.possible_start = interpretations, possible_start
 end
 
 -- ---- vw3.stream: lua/src/stream.lua ----
@@ -5493,11 +5499,12 @@ local DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE = DATA, EXCEPTION, FR
 local MIN_ADU, NEED, NOISE_ITEM_MAX, NONE = MIN_ADU, NEED, NOISE_ITEM_MAX, NONE
 local NO_INTERPRETATION, REPEAT_PROBE, REQUEST, RESPONSE = NO_INTERPRETATION, REPEAT_PROBE, REQUEST, RESPONSE
 local TOO_SHORT, add_noise, add_skipped, awaited = TOO_SHORT, add_noise, add_skipped, awaited
-local boundary_at, counted, crc16, crc_lengths, crc_ok_at = boundary_at, counted, crc16, crc_lengths, crc_ok_at
-local crc_scan, cut_reason, emit, first_above, first_after = crc_scan, cut_reason, emit, first_above, first_after
-local interpretations, math, no_frame, not_the_answer = interpretations, math, no_frame, not_the_answer
-local plausible_request, possible_start, record_start = plausible_request, possible_start, record_start
-local repeats, scanned, silence_after, table, time_at = repeats, scanned, silence_after, table, time_at
+local boundary_at, bounded_kind, counted, crc16 = boundary_at, bounded_kind, counted, crc16
+local crc_lengths, crc_ok_at, crc_scan, cut_reason, emit = crc_lengths, crc_ok_at, crc_scan, cut_reason, emit
+local first_above, first_after, interpretations, math = first_above, first_after, interpretations, math
+local no_frame, not_the_answer, plausible_request = no_frame, not_the_answer, plausible_request
+local possible_start, record_start, repeats, scanned = possible_start, record_start, repeats, scanned
+local silence_after, table, time_at = silence_after, table, time_at
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 
 -- Does a layout at i check out and end where its record does (a code without a length rule: its CRC checks at
@@ -5976,8 +5983,7 @@ end
 local function take_bounded(s, b, i, n, final, items)
   local length = bounded_run(s, b, i, n, final)
   if length <= 0 then return length end
-  local code = b[i + 1]
-  local kind = code >= 128 and EXCEPTION or (awaited(s, b, i, n) and RESPONSE or REQUEST)
+  local kind = bounded_kind(s, b, i, n)
   local offset = s.base + i
   local frame = rtu_frame(b, i, offset, time_at(s, offset), kind, length, true)
   local expected, is_scan = reading_of(s, b, i, n, kind) -- (the length its layout takes: bounded.py _expected_length)
@@ -6103,8 +6109,8 @@ package.preload["vw3.ascii"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.ascii"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, EXCEPTION, MAX_ADU, MAX_SLAVE, MIN_ADU, NEED = DATA, EXCEPTION, MAX_ADU, MAX_SLAVE, MIN_ADU, NEED
-local REQUEST, RESPONSE, add_noise, awaited, crc16 = REQUEST, RESPONSE, add_noise, awaited, crc16
+local DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, NEED, REQUEST = DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, NEED, REQUEST
+local RESPONSE, add_noise, awaited, bounded_kind, crc16 = RESPONSE, add_noise, awaited, bounded_kind, crc16
 local crc_step, cut_reason, emit, floor, flush_noise = crc_step, cut_reason, emit, floor, flush_noise
 local format, interpretations, ipairs, math, not_the_answer = format, interpretations, ipairs, math, not_the_answer
 local pairs, table, time_at = pairs, table, time_at
@@ -6333,7 +6339,7 @@ local function ascii_candidate(s, at, length, items, reason, at_end)
     return reject(s, at, length, format(TEXTS.no_layout.format, code, check), items)
   end
   -- A line with a good LRC is a frame whatever its length: ':' and its end bound it (ascii.py _candidate)
-  if kind == nil then kind = code >= 128 and EXCEPTION or (awaited(s, bin, 0, count) and RESPONSE or REQUEST) end
+  if kind == nil then kind = bounded_kind(s, bin, 0, count) end
   local offset = s.base + at
   local frame = {
     kind = kind, offset = offset, length = length, slave = slave, fn = code % 128,

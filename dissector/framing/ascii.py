@@ -163,8 +163,7 @@ class AsciiFramer(Awaiting, StreamFramer):
         if kind is None:
             # The ':' and the line end bound it and its LRC is good: a frame, as an RTU run with a good CRC between
             # two bounds is (bounded.py: pymodbus's 118-byte answer to 08/15); the decoder says what its bytes lack.
-            kind = Kind.EXCEPTION if function & 0x80 else (
-                Kind.RESPONSE if self._awaited(binary, 0) else Kind.REQUEST)
+            kind = self._bounded_kind(binary, 0)
         offset = self._base + i
         frame = Frame(
             offset=offset,

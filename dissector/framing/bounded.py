@@ -76,10 +76,7 @@ class Bounded:
     def _bounded_frame(self, buf: bytearray, i: int, length: int, n: int) -> Frame:
         """The frame of the bounded run i..i+length, with a warning when its layout takes another length."""
         function = buf[i + 1]
-        if function & 0x80:
-            kind = Kind.EXCEPTION
-        else:
-            kind = Kind.RESPONSE if self._awaited(buf, i) else Kind.REQUEST
+        kind = self._bounded_kind(buf, i)
         raw = bytes(buf[i : i + length])
         offset = self._base + i
         crc = raw[-2] | raw[-1] << 8

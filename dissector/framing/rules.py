@@ -225,6 +225,13 @@ class Awaiting:
         got = buf[i + 2 : i + 2 + len(echo)]
         return got == echo[: len(got)]
 
+    def _bounded_kind(self, buf: bytes | bytearray, i: int) -> Kind:
+        """What a frame the line bounds is, whatever length its layout takes (bounded.py, an ASCII line with a
+        good LRC): an exception by its function, else the answer awaited or a request."""
+        if buf[i + 1] & 0x80:
+            return Kind.EXCEPTION
+        return Kind.RESPONSE if self._awaited(buf, i) else Kind.REQUEST
+
     def _not_the_answer(self, kind: Kind, length: int) -> bool:
         """Is a reading of `kind` and `length` at the answer awaited's start a normal answer of another length
         than its request implies (_answer, answers.py)? Its byte count cannot be the answer's then: at the end

@@ -29,9 +29,7 @@ from dissector.render.detail import (
 )
 from dissector.render.summary import check_untyped
 from dissector.render.pcapwriter import NANOS
-from dissector.render.timefmt import MICRO_DIGITS, SECONDS, SINCE, SINCE_ITEM, arrival_line
-
-_SINCE = {Stamp: SINCE_ITEM, **SINCE}  # arrival_line's words by its base's type, where it is a Stamp
+from dissector.render.timefmt import MICRO_DIGITS, SECONDS, SINCE, arrival_line
 
 
 def detail_text(item: Item, base: float | None = None, digits: int = MICRO_DIGITS) -> str:
@@ -138,7 +136,7 @@ def plain_frame_text(frame: Frame, base: float | None, digits: int = MICRO_DIGIT
     head = None
     if time is None:
         head = f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}{words[1]}"
-    elif type(time) is Stamp and (since := _SINCE.get(type(base))) and digits == MICRO_DIGITS:  # arrival_line's
+    elif type(time) is Stamp and (since := SINCE.get(type(base))) and digits == MICRO_DIGITS:  # arrival_line's
         whole, rest = divmod(time.ns, NANOS)  # type: ignore[attr-defined]
         micros = round(rest / 1000)  # whole_micros
         if micros == 1_000_000:

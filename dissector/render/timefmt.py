@@ -209,9 +209,8 @@ class FirstPacket(Stamp):
         return FirstPacket, (self.ns,)
 
 
-# The words after the seconds of -V's Arrival time, by its base's type (a Stamp, a float: the first item's).
-SINCE = {FirstPacket: " s since the first packet)"}
-SINCE_ITEM = " s since the first item)"
+# The words after the seconds of -V's Arrival time, by its base's type (a Stamp or a float: the first item's).
+SINCE = {Stamp: " s since the first item)", FirstPacket: " s since the first packet)"}
 
 
 def network(packets: Any) -> Any:
@@ -263,7 +262,7 @@ def arrival_line(time: float, base: float | None, digits: int = MICRO_DIGITS) ->
         since = signed_text(time.ns - base.ns, digits, True)
     else:
         since = f"{time - (base or 0.0):.{digits}f}"
-    return f"    Arrival time: {utc_text(time, digits)} ({since}{SINCE.get(type(base), SINCE_ITEM)}"
+    return f"    Arrival time: {utc_text(time, digits)} ({since}{SINCE.get(type(base), SINCE[Stamp])}"
 
 
 SECONDS: dict[float, str] = {}  # a whole second's `YYYY-MM-DD HH:MM:SS` (bounded)

@@ -226,7 +226,7 @@ local function ascii_candidate(s, at, length, items, reason, at_end)
     return reject(s, at, length, format(TEXTS.no_layout.format, code, check), items)
   end
   -- A line with a good LRC is a frame whatever its length: ':' and its end bound it (ascii.py _candidate)
-  if kind == nil then kind = code >= 128 and EXCEPTION or (awaited(s, bin, 0, count) and RESPONSE or REQUEST) end
+  if kind == nil then kind = bounded_kind(s, bin, 0, count) end
   local offset = s.base + at
   local frame = {
     kind = kind, offset = offset, length = length, slave = slave, fn = code % 128,

@@ -125,6 +125,12 @@ local function awaited(st, b, i, n)
   return echo == nil or echo.expect ~= st.expect or code >= 128 or echo_at(echo, b, i, n)
 end
 
+-- What a frame the line bounds is, whatever length its layout takes (rules.py Awaiting._bounded_kind: rtu.lua
+-- take_bounded, an ASCII line with a good LRC): an exception by its function, else the answer awaited or a request.
+local function bounded_kind(st, b, i, n)
+  return b[i + 1] >= 128 and EXCEPTION or (awaited(st, b, i, n) and RESPONSE or REQUEST)
+end
+
 -- The interpretations at b[i], likeliest first. Without the bytes (b nil: feed_whole, classify_ascii) an
 -- echo awaited cannot be weighed: none then, and the general path frames the record.
 local function interpretations(st, slave, code, b, i, n)

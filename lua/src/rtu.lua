@@ -479,8 +479,7 @@ end
 local function take_bounded(s, b, i, n, final, items)
   local length = bounded_run(s, b, i, n, final)
   if length <= 0 then return length end
-  local code = b[i + 1]
-  local kind = code >= 128 and EXCEPTION or (awaited(s, b, i, n) and RESPONSE or REQUEST)
+  local kind = bounded_kind(s, b, i, n)
   local offset = s.base + i
   local frame = rtu_frame(b, i, offset, time_at(s, offset), kind, length, true)
   local expected, is_scan = reading_of(s, b, i, n, kind) -- (the length its layout takes: bounded.py _expected_length)

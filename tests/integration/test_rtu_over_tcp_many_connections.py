@@ -22,13 +22,24 @@ def polled(index: int, request: str, answer: str) -> str:
     return f"     1  {index / 10:11.6f}  {request}\n     2  {index / 10 + 0.01:11.6f}  {answer}\n"
 
 
-def test_each_connection_bus_parses_its_own_records_alone(tmp_path: Path, monkeypatch) -> None:  # type: ignore[no-untyped-def]
-    pcap = tmp_path / "polls.pcap"
+def polls_capture(path: Path, count: int, first_port: int = 40000) -> Path:
+    """`count` connections of one poll each (a request and SCENARIO_1's answer 10 ms later), 100 ms apart, each
+    from its own port from `first_port` up; a .pcapng `path` converted by editcap from the pcap beside it."""
+    pcap = path.with_suffix(".pcap")
     writer = NetWriter(pcap)
-    for index in range(40):  # (one poll a connection, 100 ms apart)
-        writer.tcp(True, 40000 + index, 4001, SCENARIO_REQUEST, 1.0 + index / 10)
-        writer.tcp(False, 40000 + index, 4001, SCENARIO_1, 1.01 + index / 10)
+    for index in range(count):
+        writer.tcp(True, first_port + index, 4001, SCENARIO_REQUEST, 1.0 + index / 10)
+        writer.tcp(False, first_port + index, 4001, SCENARIO_1, 1.01 + index / 10)
     writer.close()
+    if path.suffix == ".pcapng":
+        import subprocess
+
+        subprocess.run(["editcap", "-F", "pcapng", str(pcap), str(path)], check=True)
+    return path
+
+
+def test_each_connection_bus_parses_its_own_records_alone(tmp_path: Path, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    pcap = polls_capture(tmp_path / "polls.pcap", 40)
     parsed = []
     segment = ethernet.segment
     monkeypatch.setattr(ethernet, "segment", lambda *args: parsed.append(1) or segment(*args))
@@ -43,12 +54,7 @@ def test_each_connection_bus_parses_its_own_records_alone(tmp_path: Path, monkey
 def test_each_connection_has_devices_of_its_own(tmp_path: Path) -> None:
     # Two connections, one poll each: the second's bus started with the first's devices (profile auto had seen
     # the first's poll and named the second's registers: CHCF=IO), as a pcapng's interfaces did not.
-    pcap = tmp_path / "two.pcap"
-    writer = NetWriter(pcap)
-    for index in range(2):
-        writer.tcp(True, 40001 + index, 4001, SCENARIO_REQUEST, 1.0 + index / 10)
-        writer.tcp(False, 40001 + index, 4001, SCENARIO_1, 1.01 + index / 10)
-    writer.close()
+    pcap = polls_capture(tmp_path / "two.pcap", 2, 40001)
     answer = "12 response  Read Holding Registers 8400..8402 (3): 8400=32768 8401=3 8402=2 [#1, 10.0 ms]  CRC ok"
     assert run_cli(["--tcp-port", "4001", str(pcap)]) == (0, "".join(
         f"==> {pcap}: TCP 10.0.0.1:{40001 + index} - 10.0.0.2:4001 <==\n"
@@ -81,17 +87,9 @@ def test_a_pcapng_of_many_connections_reads_each_bus_over_its_span(tmp_path: Pat
     # As a pcap: each later bus passes over the packet blocks before its first unread (a pcapng cannot be entered
     # in the middle: its interfaces come first) and stops after its last; the interfaces sought for the line's
     # speed (first_interface) read no packet. Before, 6,716 packet blocks were read for 80 packets, 396 now.
-    import subprocess
-
     import dissector.sources.pcapng as pcapng
 
-    pcap = tmp_path / "polls.pcap"
-    writer = NetWriter(pcap)
-    for index in range(40):
-        writer.tcp(True, 40000 + index, 4001, SCENARIO_REQUEST, 1.0 + index / 10)
-        writer.tcp(False, 40000 + index, 4001, SCENARIO_1, 1.01 + index / 10)
-    writer.close()
-    subprocess.run(["editcap", "-F", "pcapng", str(pcap), str(tmp_path / "polls.pcapng")], check=True)
+    polls_capture(tmp_path / "polls.pcapng", 40)
     packets = []
     packet = pcapng._Reader._packet
     monkeypatch.setattr(pcapng._Reader, "_packet", lambda *args: packets.append(1) or packet(*args))
@@ -107,12 +105,7 @@ def test_a_compressed_capture_of_two_connections_is_two_buses(tmp_path: Path) ->
     # standard input ('save standard input to a file'), though it is a file.
     import gzip
 
-    pcap = tmp_path / "two.pcap"
-    writer = NetWriter(pcap)
-    for index in range(2):
-        writer.tcp(True, 40001 + index, 4001, SCENARIO_REQUEST, 1.0 + index / 10)
-        writer.tcp(False, 40001 + index, 4001, SCENARIO_1, 1.01 + index / 10)
-    writer.close()
+    pcap = polls_capture(tmp_path / "two.pcap", 2, 40001)
     packed = tmp_path / "two.pcap.gz"
     packed.write_bytes(gzip.compress(pcap.read_bytes()))
     assert run_cli(["--tcp-port", "4001", *["--profile", "atv71"], str(packed)]) == (0, "".join(
@@ -124,19 +117,10 @@ def test_a_pcapng_bus_goes_straight_to_its_span(tmp_path: Path, monkeypatch) -> 
     # 1,600 one-poll connections took 21.8 s as a pcapng, 1.4 s as the same pcap: each bus walked the file's blocks
     # again (sources/interfaces.py _walk), read its head for the line's speed (pcapng.first_interface: no serial
     # interface to stop at) and passed over every packet block before its span one by one, where a pcap's seeks.
-    import subprocess
-
     import dissector.sources.interfaces as interfaces
     import dissector.sources.pcapng as pcapng
 
-    pcap = tmp_path / "polls.pcap"
-    writer = NetWriter(pcap)
-    for index in range(40):
-        writer.tcp(True, 40000 + index, 4001, SCENARIO_REQUEST, 1.0 + index / 10)
-        writer.tcp(False, 40000 + index, 4001, SCENARIO_1, 1.01 + index / 10)
-    writer.close()
-    path = tmp_path / "polls.pcapng"
-    subprocess.run(["editcap", "-F", "pcapng", str(pcap), str(path)], check=True)
+    path = polls_capture(tmp_path / "polls.pcapng", 40)
     blocks, walks, heads = [], [], []
     trailer, walk, head = pcapng._Reader._trailer, interfaces._walk, pcapng.first_interface_of
     monkeypatch.setattr(pcapng._Reader, "_trailer", lambda *args: blocks.append(1) or trailer(*args))

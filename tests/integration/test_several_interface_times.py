@@ -7,8 +7,8 @@ from: `since the first packet` where it is the capture's first packet (a network
 pcapng's: tshark -V's `Time since reference or first frame`), `since the first item` where it is the first item."""
 from __future__ import annotations
 
-import struct
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -17,28 +17,14 @@ from lua_harness import ensure_tool
 from lua_net import NetWriter
 from seed_frames import SCENARIO_1, SCENARIO_REQUEST
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "unit"))  # (collected alone, it is not on the path)
+from test_pcapng_other_links import _pcapng  # noqa: E402
+
 REQUEST = bytes.fromhex("0C0320D000030EEF")
 ANSWER_A = bytes.fromhex("0C030680000003000217E4")
 ANSWER_B = bytes.fromhex("0C0306000100020003A5E4")
 ETHERNET = bytes(60)
 BOTH = pytest.mark.parametrize("pure", [False, True], ids=["engine", "python"])
-
-
-def _block(kind: int, body: bytes) -> bytes:
-    total = 12 + len(body)
-    return struct.pack("<II", kind, total) + body + struct.pack("<I", total)
-
-
-def _pcapng(linktypes: list[int], packets: list[tuple[int, int, bytes]]) -> bytes:
-    """Interfaces (their link types) and packets (interface, microseconds, bytes)."""
-    out = _block(0x0A0D0D0A, struct.pack("<IHHq", 0x1A2B3C4D, 1, 0, -1))
-    for linktype in linktypes:
-        out += _block(1, struct.pack("<HHI", linktype, 0, 0))
-    for interface, micros, data in packets:
-        stamp = 1_767_225_600_000_000 + micros
-        out += _block(6, struct.pack("<IIIII", interface, stamp >> 32, stamp & 0xFFFFFFFF, len(data), len(data))
-                      + data + b"\0" * (-len(data) % 4))
-    return out
 
 
 # Two serial interfaces and an Ethernet one (its packets first and between): bus 0's answer split over packets 4
