@@ -4972,7 +4972,7 @@ local function awaited(st, b, i, n)
   return echo == nil or echo.expect ~= st.expect or code >= 128 or echo_at(echo, b, i, n)
 end
 
--- What a frame the line bounds is, whatever length its layout takes (rules.py Awaiting._bounded_kind: rtu.lua
+-- What a frame the line bounds is, whatever length its layout takes (rules.py Awaiting._bounded_kind: the RTU framer's
 -- take_bounded, an ASCII line with a good LRC): an exception by its function, else the answer awaited or a request.
 local function bounded_kind(st, b, i, n)
   return b[i + 1] >= 128 and EXCEPTION or (awaited(st, b, i, n) and RESPONSE or REQUEST)
