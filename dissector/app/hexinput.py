@@ -12,9 +12,12 @@ frame is decoded and the check is spelled out:
 A frame is only taken that way when the framer, shown the bytes with the right CRC, finds exactly
 that one frame in them; anything else is fed as typed (and shows up as noise). An argument whose bytes
 already split into frames with good CRCs (a request and its answer pasted as one) is fed as typed.
+A packet dump pasted whole (tshark -x, Wireshark's Copy > Bytes as Hex + ASCII Dump) is its packets, a frame
+each, as standard input reads it (sources/packetdump.py).
 """
 from __future__ import annotations
 
+import io
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -24,7 +27,9 @@ from dissector.framing.rtu import RtuFramer
 from dissector.framing.rules import spans_a_frame
 from dissector.model import Chunk, Frame, Item
 from dissector.protocol.crc import crc16, crc_bytes, lrc
+from dissector.sources.common import Input, SourceError, WarningLog
 from dissector.sources.notation import Notation, NotationError
+from dissector.sources.packetdump import looks_like_packet_dump, read_packet_dump
 
 
 @dataclass(frozen=True, slots=True)
@@ -112,6 +117,19 @@ def hex_chunk(text: str, notation: Notation | None = None, where: str = "--hex")
     return Chunk(data, None, True)
 
 
+def typed_chunks(text: str, notation: Notation | None = None, where: str = "--hex") -> list[Chunk]:
+    """The chunks of one --hex argument: a packet dump's packets (its character column shows its bytes, so
+    the offsets are no data: `0000  01 03 ...  ........`), one frame each, untimed as any typed frame;
+    else hex_chunk's one."""
+    if not looks_like_packet_dump(text if text.endswith("\n") else text + "\n", complete=True):
+        return [hex_chunk(text, notation, where)]
+    stream = Input(io.BytesIO(text.encode("utf-8")), where)
+    try:
+        return [Chunk(chunk.data, None, True) for chunk in read_packet_dump(stream, WarningLog(), len(text) + 1)]
+    except SourceError as error:  # a line missing or doubled: bytes the user did not paste
+        raise UsageError(str(error)) from None
+
+
 def _one_frame(data: bytes, ascii: bool = False) -> bool:
     """Does the framer find exactly one frame, with a good check, covering all of `data`, of a length a layout
     gives (an RTU record with a good CRC is a frame whatever its length, framing/bounded.py: a typo's mending
@@ -151,8 +169,8 @@ class HexInput:
         known = Notation(notation, fixed=True) if notation is not None else Notation()
         several = len(texts) > 1
         chunks = [
-            hex_chunk(text, known, f"--hex argument {number}" if several else "--hex")
-            for number, text in enumerate(texts, start=1)
+            chunk for number, text in enumerate(texts, start=1)
+            for chunk in typed_chunks(text, known, f"--hex argument {number}" if several else "--hex")
         ]
         self.mode = mode or ("ascii" if chunks[0].data[:1] == b":" else "rtu")
         self.repairs: dict[int, Repair] = {}
