@@ -10,7 +10,9 @@ frame is decoded and the check is spelled out:
     :02062329000A             -> decoded with the LRC computed; "no LRC typed: append A2"
 
 A frame is only taken that way when the framer, shown the bytes with the right CRC, finds exactly
-that one frame in them; anything else is fed as typed (and shows up as noise). An argument whose bytes
+that one frame in them; anything else is fed as typed (and shows up as noise). A frame whose length its
+data sets (FC8 00, a user-defined code) is one frame both ways: its last two bytes are taken for data, the
+CRC left untyped, unless they are the CRC nearly right (a digit off, high byte first). An argument whose bytes
 already split into frames with good CRCs (a request and its answer pasted as one) is fed as typed.
 A packet dump pasted whole (tshark -x, Wireshark's Copy > Bytes as Hex + ASCII Dump) is its packets, a frame
 each, as standard input reads it (sources/packetdump.py).
@@ -157,6 +159,20 @@ def _good_frames(data: bytes) -> bool:
     )
 
 
+def _unended(data: bytes, awaiting: RtuFramer) -> bool:
+    """Are `data` with their CRC appended one frame too (a length its data sets: FC8 00, a user-defined code)?
+    Then their last two bytes are data as well as a CRC, and typed without a CRC as manuals print a frame is
+    the likelier (as an ASCII frame typed without its LRC is read)."""
+    whole = data + crc_bytes(data)
+    return _one_frame(whole) and awaiting.cut_answer(whole) is None
+
+
+def _near(typed: int, expected: int) -> bool:
+    """A CRC typed nearly right: one hex digit off, or its bytes swapped (written high byte first)."""
+    wrong = typed ^ expected
+    return typed == (expected >> 8 | (expected & 0xFF) << 8) or sum(wrong >> shift & 0xF != 0 for shift in (0, 4, 8, 12)) == 1
+
+
 def _wire(crc: int) -> str:
     return f"{crc & 0xFF:02X} {crc >> 8:02X}"
 
@@ -199,7 +215,7 @@ class HexInput:
             if typed == expected:
                 return chunk
             fixed = body + expected.to_bytes(2, "little")
-            if _one_frame(fixed):
+            if _one_frame(fixed) and not (_unended(data, awaiting) and not _near(typed, expected)):
                 self.repairs[offset] = Repair(
                     data,
                     f"CRC bad: received 0x{typed:04X}, expected 0x{expected:04X} "
