@@ -14,8 +14,9 @@ that one frame in them; anything else is fed as typed (and shows up as noise). A
 data sets (FC8 00, a user-defined code) is one frame both ways: its last two bytes are taken for data, the
 CRC left untyped, unless they are the CRC nearly right (a digit off, high byte first). An argument whose bytes
 already split into frames with good CRCs (a request and its answer pasted as one) is fed as typed.
-A packet dump pasted whole (tshark -x, Wireshark's Copy > Bytes as Hex + ASCII Dump) is its packets, a frame
-each, as standard input reads it (sources/packetdump.py).
+A packet dump pasted whole (tshark -x, Wireshark's Copy > Bytes as Hex + ASCII Dump) is its packets, and lines
+of a Modbus Poll / Modbus Slave traffic log (`Tx:000001-01 03 ...`) its lines, a frame each, as standard input
+reads them (sources/packetdump.py, sources/traffic.py).
 """
 from __future__ import annotations
 
@@ -32,6 +33,7 @@ from dissector.protocol.crc import crc16, crc_bytes, lrc
 from dissector.sources.common import Input, SourceError, WarningLog
 from dissector.sources.notation import Notation, NotationError
 from dissector.sources.packetdump import looks_like_packet_dump, read_packet_dump
+from dissector.sources.traffic import looks_like_traffic, parse_traffic_line
 
 
 @dataclass(frozen=True, slots=True)
@@ -121,9 +123,13 @@ def hex_chunk(text: str, notation: Notation | None = None, where: str = "--hex")
 
 def typed_chunks(text: str, notation: Notation | None = None, where: str = "--hex") -> list[Chunk]:
     """The chunks of one --hex argument: a packet dump's packets (its character column shows its bytes, so
-    the offsets are no data: `0000  01 03 ...  ........`), one frame each, untimed as any typed frame;
-    else hex_chunk's one."""
-    if not looks_like_packet_dump(text if text.endswith("\n") else text + "\n", complete=True):
+    the offsets are no data: `0000  01 03 ...  ........`) or a traffic log's lines (`Tx:000001-01 03 ...`: the
+    counter is no data), one frame each, untimed as any typed frame; else hex_chunk's one."""
+    ended = text if text.endswith("\n") else text + "\n"
+    if looks_like_traffic(ended, complete=True):
+        lines = [parse_traffic_line(line) for line in text.splitlines()]
+        return [Chunk(line[1], None, True) for line in lines if line is not None]
+    if not looks_like_packet_dump(ended, complete=True):
         return [hex_chunk(text, notation, where)]
     stream = Input(io.BytesIO(text.encode("utf-8")), where)
     try:

@@ -90,8 +90,8 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="BYTES",
         help='decode bytes typed from a manual, e.g. --hex "0C 03 20 D0 00 03 0E EF" (also 0x0C 0x03 ..., '
         '0C:03:..., or decimal "12, 3, 32, ..."), an ASCII frame --hex ":02062329000AA2" '
-        '(its CR LF may be typed as \\r\\n) or packets as tshark -x and Wireshark\'s Copy > Bytes as Hex + '
-        'ASCII Dump write them; all --hex arguments form one stream',
+        '(its CR LF may be typed as \\r\\n), packets as tshark -x and Wireshark\'s Copy > Bytes as Hex + '
+        'ASCII Dump write them or lines of a Modbus Poll traffic log; all --hex arguments form one stream',
     )
     output = parser.add_argument_group("output")
     output.add_argument("-V", dest="detail", action="store_true", help="detail tree of every field")

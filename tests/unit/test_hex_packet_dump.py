@@ -67,3 +67,16 @@ def test_a_dump_with_a_line_missing_is_refused() -> None:
     gap = DUMP.replace("0010  28", "0020  28")
     assert run_cli(["--hex", gap]) == (2, "", (
         "vw3-decode: --hex line 2: offset 0x0020 where 0x0010 was expected (bytes missing or repeated)\n"))
+
+
+def test_lines_of_a_modbus_poll_traffic_log() -> None:
+    """Modbus Poll's Communication Traffic lines (sources/traffic.py's formats), pasted: the counter and the
+    time are no bytes. Before: `--hex: 'Tx:000001-01' is not hex`."""
+    request, answer = "01 03 00 00 00 01 84 0A", "01 03 02 00 07 F9 86"
+    typed = run_cli(["--hex", request, "--hex", answer])
+    assert typed == (0, (
+        "     1            -   1 request   Read Holding Registers 0  CRC ok\n"
+        "     2            -   1 response  Read Holding Registers 0: 0=7 [#1]  CRC ok\n"), "")
+    assert run_cli(["--hex", f"Tx:000001-{request}", "--hex", f"Rx:000002-{answer}"]) == typed
+    assert run_cli(["--hex", f"000001-Tx:{request}\n000002-Rx:{answer}\n"]) == typed
+    assert run_cli(["--hex", f"Tx:000003-10:15:30.125-{request}\nRx:000004-10:15:30.140-{answer}"]) == typed
