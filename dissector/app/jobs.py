@@ -55,6 +55,7 @@ class JobSettings:
     baud: int | None = None  # --baud; None: what framing/linespeed.py says of each capture
     profile_args: argparse.Namespace | None = None  # None: -n (no device profile)
     ports: RtuPorts = RtuPorts()  # --tcp-port, --udp-port: RTU over TCP/UDP in a network capture
+    several: bool = False  # several captures: a record's warning names its file, as the decode's (app/inputs.py)
 
 
 @dataclass(slots=True)
@@ -100,7 +101,10 @@ def _chunks(files: tuple[str, ...], settings: JobSettings, tables: object, resul
             for chunk in source:
                 offset += len(chunk.data)
                 yield chunk
-            result.warnings.extend(source.take_warnings())
+            warnings = source.take_warnings()
+            if settings.several:  # (a several-interface file's name its file already: pcapng.py)
+                warnings = [text if text.startswith(f"{path}: ") else f"{path}: {text}" for text in warnings]
+            result.warnings.extend(warnings)
             if recorded is not None:
                 recorded.append(source.recorded_until)
         finally:
@@ -281,6 +285,7 @@ def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog:
     settings = JobSettings(
         directory=os.path.abspath(args.parquet), format=args.format, mode=args.mode, timeout=args.timeout,
         baud=args.baud if baud_given(args) else None, profile_args=None if args.no_profile else args, ports=ports,
+        several=len(captures) > 1,
     )
     failed = 0
     said: list[str] = []  # the map warnings of every capture, each once, after the run (as a file decode)
