@@ -431,19 +431,26 @@ def choose_profiles_first(annotate: Any, args: DecodeOptions, chunks: Iterable[C
 
 
 def no_frame_warning(path: str, mode: str, input_bytes: int, cut_records: int, cut_bytes: int) -> str:
-    """The warning for an input with no valid frame: every record captured in part (a snapshot length), else
-    not Modbus or another format or line speed (a PNG, a line read at the wrong speed)."""
+    """The warning line for an input with no valid frame (no_frame_text)."""
+    return f"{PROG}: warning: {no_frame_text(path, mode, input_bytes, cut_records, cut_bytes)}\n"
+
+
+def no_frame_text(path: str, mode: str, input_bytes: int, cut_records: int, cut_bytes: int,
+                  name: str | None = None) -> str:
+    """What is said of an input with no valid frame: every record captured in part (a snapshot length), else
+    not Modbus or another format or line speed (a PNG, a line read at the wrong speed). `name`: the input's
+    as shown, where it is not `path` (one interface of a pcapng, --parquet's capture)."""
     from dissector.render.describe import count_text
 
-    name = shown(path if path != "-" else "standard input")
+    name = shown(name if name is not None else path if path != "-" else "standard input")
     if cut_bytes == input_bytes:  # (every record captured in part: no other format)
-        return (f"{PROG}: warning: {name}: no frame can be checked: every record was captured in part "
+        return (f"{name}: no frame can be checked: every record was captured in part "
                 f"({count_text(cut_records, 'record')}, {count_text(cut_bytes, 'byte')}: a snapshot length "
                 f"shorter than the frames), their {'LRC' if mode == 'ascii' else 'CRC'}s cut off: capture again "
-                "with a larger snapshot length\n")
+                "with a larger snapshot length")
     hint = " (it holds Modbus ASCII frames: try --mode ascii)" if mode == "rtu" and holds_ascii(path) else ""
-    return (f"{PROG}: warning: {name}: no valid Modbus {mode.upper()} frame in {input_bytes} bytes (every item "
-            f"is noise or a frame with a bad check): not a Modbus capture, or another format or line speed?{hint}\n")
+    return (f"{name}: no valid Modbus {mode.upper()} frame in {input_bytes} bytes (every item "
+            f"is noise or a frame with a bad check): not a Modbus capture, or another format or line speed?{hint}")
 
 
 ASCII_HINT_BYTES = 1 << 16  # how much of a file the --mode ascii hint reads again (once, after the run)

@@ -25,6 +25,7 @@ from dissector.framing.linespeed import line_settings, settings_from_text
 from dissector.sources.ethernet import RtuPorts
 from dissector.sources.interfaces import packet_interfaces
 from dissector.framing.timing import GapChecker
+from dissector.model import Frame
 from dissector.pipeline import Dissector
 from dissector.render.bustiming import BusTiming
 from dissector.sources.reader import SourceError, open_interface, open_source
@@ -126,6 +127,12 @@ def _choose_profiles(annotate: object, files: tuple[str, ...], settings: JobSett
     choose_profiles(annotate, chunks(), mode, baud, settings.timeout)  # type: ignore[arg-type]
 
 
+def _count(items: list[Any], heard: list[int]) -> None:
+    for item in items:
+        heard[0] += item.length
+        heard[1] += isinstance(item, Frame) and bool(item.crc_ok)
+
+
 def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
     """Decode one capture into DIR/frames, DIR/registers and DIR/events (runs in any process)."""
     from dissector.app.profile_options import annotator_from_args
@@ -164,14 +171,22 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
         chunks = _chunks(capture.files, settings, tables, result, capture.interface, recorded)
         # A pcapng's packet comments (sources/trail.py), on the frames of their records, as --json's `comments`.
         trail = RecordTrail(times=False) if source_format == "pcapng" else None
+        heard = [0, 0]  # the input's bytes in items, its frames with a good check: is there Modbus at all?
         for chunk in chunks if trail is None else trail.observe(chunks):  # type: ignore[arg-type]
             items = dissector.feed(chunk)  # type: ignore[arg-type]
             tables.add(items, _comments(trail, items))
             bus.add_items(items)
+            _count(items, heard)
         items = dissector.finish()
         tables.add(items, _comments(trail, items))
         bus.add_items(items)
+        _count(items, heard)
         bus.finish()
+        if (heard[0] or framer.cut_records) and not heard[1]:  # (as the decode says it: app/cli.py)
+            from dissector.app.inputs import no_frame_text
+
+            result.warnings.append(no_frame_text(capture.files[0], mode, heard[0], framer.cut_records,
+                                                 framer.cut_bytes, capture.shown))
         tables.outages(bus.outages)
         result.rows = tables.close()
         result.map_warnings = map_warnings([annotate])
