@@ -175,8 +175,8 @@ def _unended(data: bytes, awaiting: RtuFramer) -> bool:
 
 def _near(typed: int, expected: int) -> bool:
     """A CRC typed nearly right: one hex digit off, or its bytes swapped (written high byte first)."""
-    wrong = typed ^ expected
-    return typed == (expected >> 8 | (expected & 0xFF) << 8) or sum(wrong >> shift & 0xF != 0 for shift in (0, 4, 8, 12)) == 1
+    digits_off = sum((typed ^ expected) >> shift & 0xF != 0 for shift in (0, 4, 8, 12))
+    return digits_off == 1 or typed == (expected >> 8 | (expected & 0xFF) << 8)
 
 
 def _wire(crc: int) -> str:

@@ -18,13 +18,15 @@ def test_the_specs_fc8_example_typed_without_its_crc() -> None:
         "     2            -  17 response  Diagnostics 00h Return Query Data = 42295 [#1] "
         "[no CRC typed: append D8 1D (CRC 0x1DD8)]  CRC computed (none typed)\n"), "")
     ascii = run_cli(["--hex", ":11080000A537", "--hex", ":11080000A537"])[1]
-    assert ascii.splitlines()[0].startswith("     1            -  17 request   Diagnostics 00h Return Query Data = 42295 ")
+    assert ascii.splitlines()[0].startswith(
+        "     1            -  17 request   Diagnostics 00h Return Query Data = 42295 ")
 
 
 def test_a_user_defined_code_typed_without_its_crc() -> None:
     assert run_cli(["--hex", "11 41 01 02 03"]) == (0, (
-        "     1            -  17 request   User-defined function 65 3 bytes of data [the capture ends before any response: "
-        "not known whether it was answered] [no CRC typed: append DC 9E (CRC 0x9EDC)]  CRC computed (none typed)\n"), "")
+        "     1            -  17 request   User-defined function 65 3 bytes of data [the capture ends before any "
+        "response: not known whether it was answered] [no CRC typed: append DC 9E (CRC 0x9EDC)]  CRC computed "
+        "(none typed)\n"), "")
 
 
 def test_a_crc_typed_nearly_right_is_its_typo() -> None:
