@@ -152,6 +152,8 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
         result.error = f"--parquet {settings.directory}: {error.strerror or error}"
         return result
     bus = BusTiming(settings.timeout)
+    # (frames that overlap at the line speed used: said as the decode says it, the capture named among several)
+    bus.warn = lambda text: result.warnings.append(f"{capture.shown}: {text}" if settings.several else text)
     try:
         with _open(capture.files[0], settings, capture.interface) as first:
             mode, source_format = first.mode, first.format  # the first file's, as one stream's
