@@ -52,6 +52,11 @@ WRITES = [  # (frame, access, address, value, write, exception_code) of every wr
 ]
 
 
+# The tap's pty relays mbpoll's frames faster than the 19200 baud assumed: --parquet says so, as the decode does.
+OVERLAP = ("vw3-decode: warning: 19200 baud (assumed: --baud sets it): 7 frames would overlap the one before at "
+           "19200 baud: the line is faster?\n")
+
+
 def write_capture(path: Path) -> Path:
     with path.open("wb") as out:
         out.write(struct.pack("<IHHiIII", 0xA1B23C4D, 2, 4, 0, 0, 65535, 147))  # ns pcap, USER0
@@ -63,7 +68,7 @@ def write_capture(path: Path) -> Path:
 
 def parquet_rows(capture: Path, out: Path, *options: str) -> list[tuple]:
     status, _out, err = run_cli(["--parquet", str(out), *options, str(capture)])
-    assert (status, err) == (0, "")
+    assert (status, err) == (0, OVERLAP)
     return duckdb.connect().execute(
         "SELECT frame, access, address, value, write, exception_code "
         f"FROM read_parquet('{out}/registers/*.parquet') ORDER BY frame, address").fetchall()
@@ -90,7 +95,7 @@ def test_parquet_says_which_writes_the_slave_refused(tmp_path: Path, monkeypatch
 def test_refused_rows_are_what_stats_counts_refused(tmp_path: Path) -> None:
     capture = write_capture(tmp_path / "mbpoll.pcap")
     status, _out, err = run_cli(["--parquet", str(tmp_path / "data"), str(capture)])
-    assert (status, err) == (0, "")
+    assert (status, err) == (0, OVERLAP)
     # (--stats counts registers' writes: FC6, 16, 23)
     rows = duckdb.connect().execute(
         "SELECT slave, address, count(*), count(*) FILTER (write = 'refused') "
