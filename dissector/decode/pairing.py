@@ -51,8 +51,9 @@ from __future__ import annotations
 
 import weakref
 
+from dissector.framing.answers import answer_length
 from dissector.framing.stream import part_reason
-from dissector.model import CUT_ANSWER, Frame, Item, Kind, Noise, stamped_before
+from dissector.model import CUT_ANSWER, CapturedPart, Frame, Item, Kind, Noise, stamped_before
 from dissector.protocol import table
 from dissector.protocol.rules import awaits_answer, echoed, text
 
@@ -329,15 +330,20 @@ class Pairer:
     def _answer_in_part(self, noise: Noise) -> None:
         """A record captured in part (framing/stream.py _cut_part) of the open request's slave and function (or
         its exception's), within the timeout: the slave answered, its answer's bytes cut by the snapshot length.
+        A record of which no byte was captured (no slave, no function told) is the answer where its length on
+        the line is one the answer can have (_answer_size): only the slave asked speaks then.
         The request is answered (not `[no response]`, nor counted so), its note names the item, whose reason
         names the request. Before, the request was unanswered: an engineer was told the slave did not answer."""
         pending = self._pending
         assert pending is not None
         part = noise.part
-        if part is None or part.slave is None or self._late(pending, noise.time):
+        if part is None or self._late(pending, noise.time):
             return
         slave, function = part.slave, part.function
-        if slave != pending.slave or (function is not None and function & 0x7F != pending.function):
+        if slave is None:  # (no byte captured: its length on the line tells)
+            if not _answer_size(pending, part):
+                return
+        elif slave != pending.slave or (function is not None and function & 0x7F != pending.function):
             return
         queue = self._queue  # (items are numbered as they are released, in order: pending may still be held)
         if not self._pending_released:
@@ -448,3 +454,14 @@ def _echoes(request: Frame, answer: Frame) -> bool:
 def _awaited(request: Frame, frame: Frame) -> bool:
     """Would the framer, awaiting `request`'s answer, read `frame` as it (rules.py Awaiting._awaited)?"""
     return (frame.slave, frame.function) == (request.slave, request.function) and _same_echo(request, frame)
+
+
+def _answer_size(request: Frame, part: CapturedPart) -> bool:
+    """Is `part`'s length on the line (RTU bytes; an ASCII line is 2 characters a byte, its LRC's too, and `:`
+    and CR LF) one an answer to `request` has: its exception's, or its normal answer's where the request fixes
+    it (a fixed length, a count of what the request asks: answers.py), else any from an exception's up?"""
+    size = part.original if part.check == "CRC" else (part.original - 1) / 2
+    shortest = table.EXCEPTION_LAYOUT.length.length  # type: ignore[union-attr]
+    rule = table.layout_for(request.function, Kind.RESPONSE).length  # type: ignore[arg-type]
+    normal = rule.length if isinstance(rule, table.Fixed) else answer_length(request)
+    return size == shortest or size == normal or (normal is None and size >= shortest)

@@ -131,8 +131,8 @@ def parse_watch(text: str, known: dict[str, frozenset[int]] | None = None) -> tu
 
 
 def value_text(register: Register, bits: bool = False) -> tuple[str, str | None]:
-    """A register's value as the summary names it, and its unit (only a scaled value has one); a bit
-    field as the manuals write a status word, `16#0231 (bit names)`."""
+    """A register's value as the summary and --stats' `last` name it, and its unit (only a scaled value has
+    one); `bits`: a bit field as the manuals write a status word, `16#0231 (bit names)` (--watch's lines)."""
     status = register.status
     if status in UNREADABLE_STATUSES:
         return status, None  # type: ignore[return-value]
@@ -148,10 +148,8 @@ def value_text(register: Register, bits: bool = False) -> tuple[str, str | None]
         return text, unit
     if bits:
         return f"16#{register.value:04X} ({register.text})" if register.text else f"16#{register.value:04X}", None
-    if register.text is not None:
-        if register.text.startswith(f"{register.value} "):  # an unscaled value names its own number
-            return register.text, None
-        return f"{register.value} {register.text}", None
+    if register.text is not None:  # the map's text for the word (`IO (I/O profile)`, the ATV71's 3) says it
+        return register.text, None
     return str(register.value), None
 
 

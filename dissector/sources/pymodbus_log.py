@@ -15,6 +15,12 @@ with (logging's `2026-12-07 14:53:39,225`: to the millisecond, when the call ret
 (pymodbus writes a frame at once); a recv is what one read returned, maybe part of a frame, so a run of
 recv lines ends a frame only where the program turns to sending (or the log ends): the line after decides.
 The direction decides nothing more: the framer tells a request from an answer, as for any capture.
+
+A client and a server logging in one process (a test bench) log each frame twice: the sender's send line and
+the other end's recv of the same bytes. Where the log shows both ends (a recv pymodbus decoded as a request, one
+decoded as a response, or their own lines: the server's `Server listening.`, the client's `Connecting to ...`),
+a recv run reading back the bytes sent since the run before is the other end's read, passed over: the frame is
+the send's, at its time. A one-end log keeps its echoes (an FC6 answer is its request's bytes again).
 """
 from __future__ import annotations
 
@@ -34,6 +40,9 @@ _NUMBER = re.compile(r"0x[0-9A-Fa-f]*")
 _LABEL = re.compile(r"(?:extra|[A-Za-z_]\w*[:=])")
 _BUFFER = re.compile(r"\bProcessing: 0x")
 # pymodbus's own line format (its pymodbus_apply_logging_config), for a log whose first lines carry no bytes.
+# What pymodbus says of the end that logs: a decoded request was read by a server, a decoded response by a client.
+_DECODED = re.compile(r"\bdecoded PDU .* -> \w*?(Request|Response)\(")
+_SERVER, _CLIENT = re.compile(r"\bServer listening\.|\bAwaiting connections "), re.compile(r"\bConnecting to ")
 _OWN = re.compile(r"\d{4}-\d\d-\d\d \d\d:\d\d:\d\d,\d{3} (?:DEBUG|INFO |WARNING|ERROR|CRITICAL) \w+:\d+ .*")
 
 
@@ -81,12 +90,15 @@ def read_pymodbus(inp: Input, log: WarningLog, chunk_size: int) -> StampedLines:
 
 def _chunks(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
     days = Days()
-    held: Chunk | None = None  # a recv line's bytes, until the next wire line says whether a frame ends there
+    run: list[Chunk] = []  # recv lines' bytes, until the next wire line says whether a frame ends there
+    sent = bytearray()  # the bytes of the send lines since the last recv run
+    ends: set[str] = set()  # the ends the log shows ("Request": a server, "Response": a client)
     found = buffered = False
     for number, line, ended in ended_lines(inp, chunk_size):
         wire = wire_line(line)
         if wire is None:
             buffered = buffered or _BUFFER.search(line) is not None
+            _ends(line, ends)
             continue
         direction, tokens, labelled = wire
         if not ended and not labelled:  # the last number may be cut (`0xd` of `0xda`): not read
@@ -95,19 +107,44 @@ def _chunks(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
         else:
             data = _bytes(tokens, f"{inp.name} line {number}")
         found = True
-        if held is not None:
-            yield Chunk(held.data, held.time, direction == "send")
-            held = None
         chunk = Chunk(data, days.place(_time(line, f"{inp.name} line {number}")), True)  # type: ignore[arg-type]
-        if data and direction == "send":
-            yield chunk
+        if direction == "send":
+            if run:
+                yield from _run(run, sent, ends)
+                run, sent = [], bytearray()
+            if data:
+                sent += data
+                yield chunk
         elif data:
-            held = chunk
-    if held is not None:
-        yield held
+            run.append(Chunk(data, chunk.time, False))
+            if not sent.startswith(b"".join(piece.data for piece in run)):  # (no read-back: held no longer)
+                yield from run[:-1]
+                del run[:-1]
+    if run:
+        yield from _run(run, sent, ends)
     if not found and buffered:
         log.warn("empty", f"{inp.name}: no send: or recv: line, only the framer's Processing: buffers, which repeat "
                           "bytes and hold no request sent (pymodbus's sync clients log no more): log an async client "
                           "or the server, or capture the line")
     elif not found:  # (--format pymodbus on another text: every line passed over, said, not silent)
         log.warn("empty", f"{inp.name}: no send: or recv: line of a pymodbus debug log")
+
+
+def _ends(line: str, ends: set[str]) -> None:
+    """The end a line of pymodbus's own shows logging (a server, a client), added to `ends`."""
+    decoded = _DECODED.search(line)
+    if decoded is not None:
+        ends.add(decoded.group(1))
+    elif _SERVER.search(line):
+        ends.add("Request")
+    elif _CLIENT.search(line):
+        ends.add("Response")
+
+
+def _run(run: list[Chunk], sent: bytearray, ends: set[str]) -> Iterator[Chunk]:
+    """A recv run's chunks, a frame ending after the last (the program turns to sending, or the log ends); none
+    where both ends log and it reads back the bytes `sent` since the run before: the other end reading them."""
+    if len(ends) == 2 and b"".join(chunk.data for chunk in run) == sent:
+        return
+    yield from run[:-1]
+    yield Chunk(run[-1].data, run[-1].time, True)

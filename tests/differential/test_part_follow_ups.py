@@ -110,16 +110,17 @@ def test_a_capture_of_records_captured_in_part_is_said_so(tmp_path: Path, monkey
 @pytest.mark.parametrize("suffix", ["pcap", "pcapng"])
 def test_record_of_no_byte_captured_is_a_cut(suffix: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """A record of which none of its 9 bytes were captured is a cut all the same (bytes were lost there): an
-    item of no byte that says so, and the warning. Before: nothing at all between request 1 and the next."""
+    item of no byte that says so, and the warning. Before: nothing at all between request 1 and the next. (Its 9
+    bytes, within the timeout, are the read's answer's length: that answer, test_no_byte_answer.py.)"""
     capture = raw_pcap(tmp_path / "zero.pcap", [(0, 8, REQUEST), (10_000, 9, b""), (100_000, 8, REQUEST),
                                                  (110_000, 9, ANSWER)])
     if suffix == "pcapng":
         capture = as_pcapng(capture, tmp_path)
     out, _framed = engine_output_as_python([str(capture)], monkeypatch)
     assert out.splitlines() == [
-        "     1     0.000000   2 request   Read Holding Registers 8401..8402 (2) [no response]  CRC ok",
-        "     2     0.010000   - noise     0 bytes of noise at offset 8 [captured in part (0 of its 9 bytes): its CRC"
-        " cannot be checked]",
+        "     1     0.000000   2 request   Read Holding Registers 8401..8402 (2) [answer captured in part in #2]  CRC ok",
+        "     2     0.010000   - noise     0 bytes of noise at offset 8 [captured in part (0 of its 9 bytes; the answer to"
+        " #1): its CRC cannot be checked]",
         "     3     0.100000   2 request   Read Holding Registers 8401..8402 (2)  CRC ok",
         "     4     0.110000   2 response  Read Holding Registers 8401..8402 (2): 8401=3 8402=2 [#3, 10.0 ms]  CRC ok",
         "vw3-decode: warning: record 2: only 0 of its 9 bytes were captured",

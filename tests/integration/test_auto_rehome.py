@@ -65,7 +65,7 @@ def test_watch_sees_the_change_across_the_choice(tmp_path: Path, monkeypatch: py
     use_engine(monkeypatch, pure)
     status, out, err = run_cli(["--watch", "CHCF", *_files(tmp_path)])
     assert status == 0, err
-    assert out.splitlines()[-1].split(None, 3)[2:] == ["2", "CHCF 3 IO (I/O profile) -> 4 (not a listed value)"]
+    assert out.splitlines()[-1].split(None, 3)[2:] == ["2", "CHCF IO (I/O profile) -> 4 (not a listed value)"]
 
 
 @pytest.mark.parametrize("pure", [False, True])

@@ -94,8 +94,8 @@ def test_watch_sees_no_change_in_the_fc4_read_of_the_value_written(tmp_path: Pat
         status, out, err = run_cli(["-", "--watch", "8401", *ATV71], stdin=capture.read_bytes())
     assert status == 0, err
     assert out.splitlines() == [
-        "     6            -   1 CHCF 1 SIM (combined) -> 2 SEP (separate)",
-        "    12            -   1 CHCF 2 SEP (separate) -> protected",
+        "     6            -   1 CHCF SIM (combined) -> SEP (separate)",
+        "    12            -   1 CHCF SEP (separate) -> protected",
     ]
 
 

@@ -105,7 +105,8 @@ def test_request_whose_answer_is_captured_in_part(tmp_path: Path) -> None:
 
 def test_record_of_no_byte_captured(tmp_path: Path) -> None:
     """A record of which none of its 9 bytes were captured is a cut in the plugin too: an item of no byte that
-    says so (before: nothing shown for it), as vw3-decode in one pass and two."""
+    says so (before: nothing shown for it), as vw3-decode in one pass and two; of the length of the read's answer,
+    within the timeout, it is that answer (test_no_byte_answer.py)."""
     from helpers import rtu
 
     request, answer = rtu("02 03 20d1 0002"), rtu("02 03 04 0003 0002")
@@ -113,5 +114,6 @@ def test_record_of_no_byte_captured(tmp_path: Path) -> None:
                                                  (110_000, 9, answer)])
     assert_as_vw3_decode_in_one_and_two_passes(capture, LATER)
     assert reasons(capture) == [
-        (1, "request", ""), (2, "noise", "captured in part (0 of its 9 bytes): its CRC cannot be checked"),
+        (1, "request", ""),
+        (2, "noise", "captured in part (0 of its 9 bytes; the answer to #1): its CRC cannot be checked"),
         (3, "request", ""), (4, "response", "")]

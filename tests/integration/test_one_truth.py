@@ -452,7 +452,7 @@ def test_p38_read_once_counts_as_the_file() -> None:
     pcap = CAPTURES / "p38_protection.pcap"
     data = pcap.read_bytes()
     assert run_cli(["-", "--watch", "8400,CHCF"], stdin=data) == (
-        0, "     6     1.059949  12 CHCF 3 IO (I/O profile) -> protected\n", "")
+        0, "     6     1.059949  12 CHCF IO (I/O profile) -> protected\n", "")
     status, out, _ = run_cli(["-", "--stats"], stdin=data)
     table = out[out.index("Parameters\n"):].split("\n\n")[0].splitlines()
     assert table[3:6] == [

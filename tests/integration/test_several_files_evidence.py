@@ -56,9 +56,9 @@ def test_watch_lines_under_their_file(files: list[str], monkeypatch: pytest.Monk
     assert status == 0, err
     assert out.splitlines() == [
         "==> atv71.bin <==",
-        "     4            -   2 CHCF 3 IO (I/O profile) -> 4 (not a listed value)",
+        "     4            -   2 CHCF IO (I/O profile) -> 4 (not a listed value)",
         "==> polls.bin <==",
-        "     2            -   2 CHCF 4 (not a listed value) -> 3 IO (I/O profile)",
+        "     2            -   2 CHCF 4 (not a listed value) -> IO (I/O profile)",
     ]
     status, out, err = run_cli(["--watch", "CHCF", "--json", *files])
     assert [(change["frame"], change["file"]) for change in map(json.loads, out.splitlines())] == [(4, "atv71.bin")]

@@ -54,8 +54,8 @@ def test_live_watch_prints_each_change_when_it_happens() -> None:
         os.close(device_fd)
     texts = [text.split(None, 2)[2] for _count, text in lines]  # without the frame and time columns
     assert texts == [
-        "12 CHCF 3 IO (I/O profile) -> protected",
-        "12 COP 2 Cd (command) -> protected (exception 02)",
+        "12 CHCF IO (I/O profile) -> protected",
+        "12 COP Cd (command) -> protected (exception 02)",
     ]
     assert [text.split()[0] for _count, text in lines] == ["6", "10"]  # the frame numbers
     # Each change was printed before the next frame went out: frame 6 and frame 10 (1-based).
@@ -110,7 +110,7 @@ def test_live_watch_says_what_it_never_heard_as_a_file_does(tmp_path) -> None:
     says it (was: nothing, with --live)."""
     lines, err, status = run_live("--watch", "CHCF,9999,HSP")
     assert status == 0
-    assert [text.split(None, 2)[2] for text in lines] == ["12 CHCF 3 IO (I/O profile) -> protected"]
+    assert [text.split(None, 2)[2] for text in lines] == ["12 CHCF IO (I/O profile) -> protected"]
     said = [text for text in err.splitlines() if "--watch" in text]
     assert said == ["vw3-decode: --watch 9999: no register 9999 in the capture",
                     "vw3-decode: --watch HSP: no register named HSP in the capture"]

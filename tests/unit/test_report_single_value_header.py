@@ -30,7 +30,7 @@ def test_single_value_table_counts_reads(tmp_path: Path, monkeypatch: pytest.Mon
     # ATV71 (slave 12): CHCF (8401) read twice, the same value both times
     table = _table(tmp_path, rtu("0C03 20D1 0001") + rtu("0C03 02 0003") + rtu("0C03 20D1 0001") + rtu("0C03 02 0003"))
     assert HEADER in table
-    assert "<td>12</td><td>8401</td><td>CHCF</td><td>Profile</td><td>3 IO (I/O profile)</td><td>2</td><td>0</td>" in table
+    assert "<td>12</td><td>8401</td><td>CHCF</td><td>Profile</td><td>IO (I/O profile)</td><td>2</td><td>0</td>" in table
 
 
 @pytest.mark.parametrize("pure", [False, True])
@@ -40,7 +40,7 @@ def test_single_value_table_counts_writes_apart(tmp_path: Path, monkeypatch: pyt
     data = rtu("0C06 20D1 0003") + rtu("0C06 20D1 0003") + rtu("0C03 20D2 0001") + rtu("0C03 02 0005")
     table = _table(tmp_path, data)
     assert HEADER in table
-    assert ("<td>12</td><td>8401</td><td>CHCF</td><td>Profile</td><td>3 IO (I/O profile)</td><td>0</td><td>1</td>"
+    assert ("<td>12</td><td>8401</td><td>CHCF</td><td>Profile</td><td>IO (I/O profile)</td><td>0</td><td>1</td>"
             in table)
     assert "<td>12</td><td>8402</td><td>COP</td><td>Copy channel 1 &lt;&gt; 2</td><td>5 (not a listed value)</td>" \
            "<td>1</td><td>0</td>" in table

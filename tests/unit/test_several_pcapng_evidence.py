@@ -71,7 +71,7 @@ def test_memory_and_watch_cite_the_input(files: list[str], monkeypatch: pytest.M
     assert status == 0, err
     assert out.splitlines() == [
         f"==> {B0} <==",
-        "     2    60.030000   2 CHCF 3 IO (I/O profile) -> protected (exception 02)",
+        "     2    60.030000   2 CHCF IO (I/O profile) -> protected (exception 02)",
     ]
     status, out, err = run_cli(["--watch", "CHCF", "--json", *files])
     assert [(change["frame"], change["file"]) for change in map(json.loads, out.splitlines())] == [(2, B0)]

@@ -15,8 +15,8 @@ def test_p38_is_one_change_per_parameter() -> None:
     status, out, err = run_cli([str(CAPTURES / "p38_protection.pcap"), "--watch", "CHCF,COP"])
     assert (status, err) == (0, "")
     assert out.splitlines() == [
-        "     6     1.059949  12 CHCF 3 IO (I/O profile) -> protected",
-        "    10     2.105960  12 COP 2 Cd (command) -> protected (exception 02)",
+        "     6     1.059949  12 CHCF IO (I/O profile) -> protected",
+        "    10     2.105960  12 COP Cd (command) -> protected (exception 02)",
     ]
 
 
@@ -27,14 +27,14 @@ def test_untimed_capture_codes_case_and_addresses_json() -> None:
     assert (status, err) == (0, "")
     changes = [json.loads(line) for line in out.splitlines()]
     assert [(c["frame"], c["address"], c["code"], c["old"], c["new"]) for c in changes] == [
-        (6, 8401, "CHCF", "3 IO (I/O profile)", "protected"),
-        (10, 8402, "COP", "2 Cd (command)", "protected (exception 02)"),
+        (6, 8401, "CHCF", "IO (I/O profile)", "protected"),
+        (10, 8402, "COP", "Cd (command)", "protected (exception 02)"),
     ]
     assert all(c["time"] is None and c["time_relative"] is None for c in changes)
     status, out, _ = run_cli([str(CAPTURES / "p38_protection.bin"), "--watch", "chcf,8400,COP", "--profile", "atv71"])
     assert out.splitlines() == [
-        "     6            -  12 CHCF 3 IO (I/O profile) -> protected",
-        "    10            -  12 COP 2 Cd (command) -> protected (exception 02)",
+        "     6            -  12 CHCF IO (I/O profile) -> protected",
+        "    10            -  12 COP Cd (command) -> protected (exception 02)",
     ]
 
 
@@ -51,14 +51,14 @@ def test_commissioning_writes_scaled_reads_and_status_words() -> None:
         return f"2 ETA 16#{old:04X} ({bits[old]}) -> 16#{new:04X} ({bits[new]})"
 
     assert out.splitlines() == [
-        "     8     0.111429   2 CHCF 3 IO (I/O profile) -> 2 SEP (separate)",  # FC6 echo confirms the write
+        "     8     0.111429   2 CHCF IO (I/O profile) -> SEP (separate)",  # FC6 echo confirms the write
         "    26     0.404108   " + eta(0x231, 0x233),
         "    32     0.549622   " + eta(0x233, 0x237),
         "    66     1.366757   2 HSP 50.0 -> 55.0 (Hz)",
         "    76     1.596870   " + eta(0x237, 0x233),
         "   100     2.193622   " + eta(0x233, 0x231),
         # CHCF = 3 refused with exception 07 while running (frame 64) changes nothing; accepted at the end.
-        "   104     2.289814   2 CHCF 2 SEP (separate) -> 3 IO (I/O profile)",
+        "   104     2.289814   2 CHCF SEP (separate) -> IO (I/O profile)",
     ]
     status, out, _ = run_cli([str(CAPTURES / "atv71_commissioning.pcap"), "--watch", "RFR"])
     lines = out.splitlines()
@@ -70,14 +70,14 @@ def test_time_column_follows_t_and_ignores_the_display_filter() -> None:
     capture = str(CAPTURES / "p38_protection.pcap")
     status, out, _ = run_cli([capture, "--watch", "CHCF", "-Y", "frame >= 3"])
     # -Y chooses the frames watched (frame 4 is the first CHCF seen); times still count from frame 1.
-    assert status == 0 and out.splitlines() == ["     6     1.059949  12 CHCF 3 IO (I/O profile) -> protected"]
+    assert status == 0 and out.splitlines() == ["     6     1.059949  12 CHCF IO (I/O profile) -> protected"]
     # The same time column as the summary line of frame 6 with the same -t.
     status, out, _ = run_cli([capture, "--watch", "CHCF", "-t", "e"])
-    assert out.splitlines() == ["     6 1767225601.069064  12 CHCF 3 IO (I/O profile) -> protected"]
+    assert out.splitlines() == ["     6 1767225601.069064  12 CHCF IO (I/O profile) -> protected"]
     status, out, _ = run_cli([capture, "--watch", "CHCF", "-t", "ud"])
-    assert out.splitlines() == ["     6 2026-01-01 00:00:01.069064  12 CHCF 3 IO (I/O profile) -> protected"]
+    assert out.splitlines() == ["     6 2026-01-01 00:00:01.069064  12 CHCF IO (I/O profile) -> protected"]
     status, out, _ = run_cli([capture, "--watch", "CHCF", "-t", "d"])  # from frame 5, captured before
-    assert out.splitlines() == ["     6     0.009832  12 CHCF 3 IO (I/O profile) -> protected"]
+    assert out.splitlines() == ["     6     0.009832  12 CHCF IO (I/O profile) -> protected"]
 
 
 def test_misspelt_and_unknown_names_are_errors_with_suggestions() -> None:
@@ -164,7 +164,7 @@ def test_json_time_is_the_items_time_whatever_t_says() -> None:
     capture = str(CAPTURES / "p38_protection.pcap")
     (item,) = [json.loads(line) for line in run_cli([capture, "--json", "-Y", "frame == 6"])[1].splitlines()]
     expected = {"time": 1767225601.069064, "time_relative": 1.059949, "frame": 6, "slave": 12, "address": 8401,
-                "code": "CHCF", "old": "3 IO (I/O profile)", "new": "protected", "unit": None}
+                "code": "CHCF", "old": "IO (I/O profile)", "new": "protected", "unit": None}
     assert item["time"] == expected["time"]
     for extra in ([], ["-t", "e"], ["-t", "r"], ["-t", "d"], ["-t", "ud"]):
         status, out, err = run_cli([capture, "--watch", "CHCF", "--json", *extra])

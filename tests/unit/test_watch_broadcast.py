@@ -43,13 +43,13 @@ def watch(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, *options: str) -> str
 
 def test_a_broadcast_write_shows_on_the_watch(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     assert watch(tmp_path, monkeypatch, "--watch", "CHCF").splitlines() == [
-        "     4     1.020000  12 CHCF 3 IO (I/O profile) -> protected",
-        "     5     2.000000   0 CHCF ? -> 3 IO (I/O profile) [broadcast: every slave]",
-        "     6     3.000000   0 CHCF ? -> 3 IO (I/O profile) [broadcast: every slave]",
+        "     4     1.020000  12 CHCF IO (I/O profile) -> protected",
+        "     5     2.000000   0 CHCF ? -> IO (I/O profile) [broadcast: every slave]",
+        "     6     3.000000   0 CHCF ? -> IO (I/O profile) [broadcast: every slave]",
     ]
 
 
 def test_json(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     records = [json.loads(line) for line in watch(tmp_path, monkeypatch, "--watch", "COP", "--json").splitlines()]
     assert records == [{"time": T0 + 3.0, "time_relative": 3.0, "frame": 6, "slave": 0, "address": 8402,
-                        "code": "COP", "old": None, "new": "2 Cd (command)", "unit": None, "broadcast": True}]
+                        "code": "COP", "old": None, "new": "Cd (command)", "unit": None, "broadcast": True}]

@@ -76,8 +76,8 @@ def labelled(row: Any) -> bool:
 
 
 def summary_text(register: Register) -> str:
-    """A value as the summary names it, with its unit (watch.py value_text: `4.0 kHz`, `2 Cd (command)`,
-    an unscaled value's own text)."""
+    """A value as the summary names it, with its unit (watch.py value_text: `4.0 kHz`, `Cd (command)`, a
+    status word's bit names, an unscaled value's own text)."""
     text, unit = value_text(register)
     return text if unit is None else f"{text} {unit}"
 
