@@ -287,7 +287,9 @@ class TimedPath:
         if self.befores is not None:
             del self.befores[:index]
         self.fed -= index
-        if self.marked:  # (no item before the chunk kept asks its packet's time: the marks stay few)
+        if self.marked and not self.python:
+            # (the engine has the stream: no item before the chunk kept will ask its packet's time, the marks stay
+            # few; the Python stages' pairer may hold a request from before it, their Sinks forget as they show)
             self.packets.forget(start)
 
     def _packet_refs(self, block: Block) -> None:

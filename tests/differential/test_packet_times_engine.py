@@ -108,3 +108,21 @@ def test_the_engine_writes_the_pinned_columns(tmp_path: Path, monkeypatch: pytes
     assert columns == {"r": ["0.001000", "0.010000", "0.030000", "0.003000", "0.011000"],
                        "d": ["0.001000", "0.007000", "0.010000", "0.002000", "0.001000"],
                        "dd": ["0.000000", "0.009000", "0.020000", "0.000000", "0.008000"]}
+
+
+def test_marks_forgotten_on_a_long_capture(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """More than the 4096 packet marks PacketTimes.forget keeps before it drops any, with noise and damage the
+    Python stages take (a request they pair may come from before the chunks the engine keeps)."""
+    rng = random.Random(5)
+    packets: list[tuple[int, int, bytes]] = []
+    for interface in (0, 1):
+        micros = interface * 777
+        for frame, _ns in [timed for k in range(12) for timed in frames_of(interface * 1000 + k, 0.03)]:
+            micros += rng.choice([2000, 5000, 30000, 200000])
+            packets += [(interface, micros + k * 300, piece) for k, piece in enumerate(_pieces(rng, frame))]
+    assert sum(1 for interface, _micros, _data in packets if interface == 0) > 4096
+    packets += [(2, rng.randrange(0, 10**9), ETHERNET) for _ in range(400)]
+    packets.sort(key=lambda packet: packet[1])
+    path = tmp_path / "long.pcapng"
+    path.write_bytes(_pcapng([147, 147, 1], packets))
+    _same(["-t", "d", str(path)], monkeypatch, "d")
