@@ -492,6 +492,7 @@ typedef struct {
     int kind, slave, function;
     int timed;           /* run_timed(): the frame's chunk has a time, ns */
     long long ns;
+    long long before;    /* run_timed() with befores: the time of the packet before its first (_timeline.h) */
     long long decided;   /* run_timed(): the Python framer's buffer end when it takes this frame */
 } FrameRef;
 
@@ -1207,7 +1208,7 @@ static int info_text(Engine *e, Slave *s, const InfoForm *info, const Lifted *li
 static int line(Engine *e, const FrameRef *f, const FrameRef *request, unsigned long long number, int unanswered,
                 Slave *s, const Lifted *lifted, PyObject *info, PyObject *tail) {
     out_uint(&e->out, number, 6);
-    out_time_column(&e->out, &e->tl, f->timed, f->ns);
+    out_time_column(&e->out, &e->tl, f->timed, f->ns, f->before);
     out_uint(&e->out, (unsigned)f->slave, 3);
     out_cstr(&e->out, kind_column[f->kind]);
     int k = handled_index(f->function & 0x7F);
@@ -1377,22 +1378,24 @@ static int idle(const Engine *e, const char *what) {
 }
 
 /* run(buffer, position) -> (lines, position, status): the transactions of buffer from position on;
- * run_timed(buffer, position, base, starts, times, flags): the same on a stream of chunks (_timeline.h):
+ * run_timed(buffer, position, base, starts, times, flags[, befores]): the same on a stream of chunks (_timeline.h):
  * `base` the stream offset of buffer[0]; per chunk its start (stream offset, int64), its time (int64 ns)
- * and its flags (a byte); the first chunk holds buffer[0], the last one ends with the buffer. */
+ * and its flags (a byte), and for CLOCK_PACKETS the time of the packet before it (int64 ns, NO_BEFORE: none);
+ * the first chunk holds buffer[0], the last one ends with the buffer. */
 static PyObject *engine_run(Engine *e, PyObject *args) {
-    Py_buffer view, starts = {0}, times = {0}, flags = {0};
+    Py_buffer view, starts = {0}, times = {0}, flags = {0}, befores = {0};
     Py_ssize_t pos;
     long long base = 0;
     if (e->slave_info == NULL) return PyErr_Format(PyExc_RuntimeError, "Engine not initialised");
-    if (!idle(e, "run") || !PyArg_ParseTuple(args, "y*n|Ly*y*y*", &view, &pos, &base, &starts, &times, &flags))
+    if (!idle(e, "run") || !PyArg_ParseTuple(args, "y*n|Ly*y*y*y*", &view, &pos, &base, &starts, &times, &flags, &befores))
         return NULL;
     int timed = PyTuple_GET_SIZE(args) > 2, step = STEP_ERROR;
     Py_ssize_t count = starts.len / (Py_ssize_t)sizeof(long long);
     const long long *start = starts.buf;
     Timeline *t = &e->tl;
     if (timed && (count < 1 || starts.len % (Py_ssize_t)sizeof(long long) || times.len != starts.len ||
-                  flags.len != count || start[0] > base || start[count - 1] >= base + view.len)) {
+                  flags.len != count || start[0] > base || start[count - 1] >= base + view.len ||
+                  (befores.buf != NULL && befores.len != starts.len))) {
         PyErr_SetString(PyExc_ValueError, "run_timed: one start, time and flag per chunk, covering the buffer");
     } else if (pos < 0 || pos > view.len) {
         PyErr_SetString(PyExc_ValueError, "position outside the buffer");
@@ -1402,6 +1405,7 @@ static PyObject *engine_run(Engine *e, PyObject *args) {
             t->base = base;
             t->start = start;
             t->ns = times.buf;
+            t->before = befores.buf; /* (NULL: none given) */
             t->flags = flags.buf;
             t->count = count;
             t->end = base + view.len;
@@ -1420,13 +1424,14 @@ static PyObject *engine_run(Engine *e, PyObject *args) {
         if (write_memory(e) < 0) step = STEP_ERROR;
         e->running = 0;
         t->active = 0;
-        t->start = t->ns = NULL;
+        t->start = t->ns = t->before = NULL;
         t->flags = NULL;
     }
     PyBuffer_Release(&view);
     PyBuffer_Release(&starts);
     PyBuffer_Release(&times);
     PyBuffer_Release(&flags);
+    if (befores.buf != NULL) PyBuffer_Release(&befores);
     if (step == STEP_ERROR) return NULL; /* a failing callback or no memory: a bug to see, not to hide */
     /* UTF-8 bytes: written to the binary stream as they are, with no round trip through str. */
     PyObject *lines = PyBytes_FromStringAndSize(e->out.data ? e->out.data : "", (Py_ssize_t)e->out.len);
@@ -1513,8 +1518,9 @@ static PyMethodDef engine_methods[] = {
      "run(buffer, position) -> (lines, position, status): summary lines (UTF-8) of the transactions from\n"
      "position on; status 0: needs more bytes, 1: hand the stream over at position."},
     {"run_timed", (PyCFunction)engine_run, METH_VARARGS,
-     "run_timed(buffer, position, base, starts, times, flags) -> run()'s answer, for a stream of timed\n"
-     "chunks (pcap records): int64 stream offsets and ns times, a flag byte per chunk (_timeline.h)."},
+     "run_timed(buffer, position, base, starts, times, flags[, befores]) -> run()'s answer, for a stream of\n"
+     "timed chunks (pcap records): int64 stream offsets and ns times, a flag byte per chunk, the packet before\n"
+     "each's time in ns (_timeline.h)."},
     {NULL, NULL, 0, NULL},
 };
 

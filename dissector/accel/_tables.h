@@ -409,7 +409,9 @@ static const double gap_edges_ms[] = {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 20
 #define Y_DIGITS 6
 #define MAX_SERIES 400
 #define POLL_STEP 0.0001
-/* The time column -t r's code (accel/timedpath.py CLOCKS; the others' are deltas), for _timeline.h. */
+/* The time column -t r's code (accel/timedpath.py CLOCKS; the others' are deltas), and -t d's counted from
+ * the packet before each item's first (PACKET_DELTAS: a network or several-interface capture's), for _timeline.h. */
 #define CLOCK_RELATIVE 0
+#define CLOCK_PACKETS 2
 
 #endif

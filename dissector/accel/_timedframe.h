@@ -104,6 +104,7 @@ static int timed_frame(Engine *e, const uint8_t *b, Py_ssize_t n, FrameRef *f, l
     Py_ssize_t k = chunk_of(t, at);
     f->timed = (t->flags[k] & CHUNK_TIMED) != 0;
     f->ns = t->ns[k];
+    f->before = t->before != NULL ? t->before[k] : NO_BEFORE;
     f->decided = seen;
     return FRAME_OK;
 }

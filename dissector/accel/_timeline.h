@@ -23,6 +23,9 @@ typedef struct {
     long long base;          /* stream offset of the buffer's first byte */
     const long long *start;  /* chunk starts (stream offsets, ascending); chunk k ends where k+1 starts */
     const long long *ns;     /* chunk times (valid where CHUNK_TIMED) */
+    /* CLOCK_PACKETS: per chunk the time of the packet captured before its first byte's (NO_BEFORE: none), the
+     * network or several-interface capture's -t d reference (sources/ethernet.py PacketTimes.before); else NULL. */
+    const long long *before;
     const uint8_t *flags;
     Py_ssize_t count;
     long long end;           /* stream offset of the end of the last chunk given (the buffer's end) */
@@ -30,10 +33,12 @@ typedef struct {
     long long decided;       /* the Python framer's buffer end when it decided the last frame */
     /* Settings (set_timing): the line's character time and t1.5, the pairing timeout (< 0: none). */
     double char_time, t15, timeout;
-    int clock;               /* timedpath.CLOCKS: CLOCK_RELATIVE (-t r), else deltas (-t d, dd) */
+    int clock;               /* timedpath.CLOCKS: CLOCK_RELATIVE (-t r), CLOCK_PACKETS, else deltas (-t d, dd) */
     int nanos;               /* the column in ns, 9 decimals (a nanosecond capture), else in us */
     ClockRefs refs;
 } Timeline;
+
+#define NO_BEFORE LLONG_MIN /* Timeline.before: the item's packet is the capture's first */
 
 /* Index of the chunk holding stream offset `at` (start[k] <= at < its end). */
 static Py_ssize_t chunk_of(Timeline *t, long long at) {
@@ -156,8 +161,9 @@ static void out_fixed(Out *o, double value, int digits, int width) {
     out_padded(o, text, fixed_text(text, value, digits), width);
 }
 
-/* summary_line's head after the number: ` {column:>12} ` (render/timefmt.Clock.text, -t r, d, dd). */
-static void out_time_column(Out *o, Timeline *t, int timed, long long ns) {
+/* summary_line's head after the number: ` {column:>12} ` (render/timefmt.Clock.text, -t r, d, dd); `before`
+ * the time of the packet before the frame's first (CLOCK_PACKETS: its -t d reference; NO_BEFORE: none). */
+static void out_time_column(Out *o, Timeline *t, int timed, long long ns, long long before) {
     if (!timed) {
         out_put(o, "            - ", 14);
         return;
@@ -167,8 +173,11 @@ static void out_time_column(Out *o, Timeline *t, int timed, long long ns) {
         refs->has_first = 1;
         refs->first_ns = ns;
     }
-    /* Its time since its reference: the first timed item, else the previous one (none: itself, 0). */
-    long long since = t->clock == CLOCK_RELATIVE ? refs->first_ns : refs->has_previous ? refs->previous_ns : ns;
+    /* Its time since its reference: the first timed item (or packet), the packet before its first, else the
+     * previous item (none: itself, 0). */
+    long long since = t->clock == CLOCK_RELATIVE ? refs->first_ns
+                      : t->clock == CLOCK_PACKETS ? (before == NO_BEFORE ? ns : before)
+                      : refs->has_previous ? refs->previous_ns : ns;
     refs->has_previous = 1;
     refs->previous_ns = ns;
     out_put(o, " ", 1);

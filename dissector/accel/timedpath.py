@@ -24,9 +24,13 @@ from dissector.model import Chunk, Item, Stamp
 from dissector.sources.common import PartChunk
 from dissector.pipeline import Dissector
 from dissector.render.pcapwriter import NANOS
-from dissector.render.timefmt import Clock
+from dissector.render.timefmt import Clock, FirstPacket, network
 
 CLOCKS = {"r": 0, "d": 1, "dd": 1}  # the time columns the engine writes (timefmt.Clock.text)
+# -t d of a capture whose time column counts its packets (timefmt.Clock.packets: a network or several-interface
+# capture's): from the packet captured before each item's first, which the engine is told per chunk (befores).
+PACKET_DELTAS = 2
+NO_BEFORE = -(1 << 63)  # _timeline.h NO_BEFORE: the chunk's packet is the capture's first
 
 
 def usable(clock: Clock) -> bool:
@@ -48,7 +52,15 @@ class TimedPath:
         # (shown False: its lines are only counted, --stats)
         self.engine = make_engine(annotator, shown, self.pairer)
         timing = self.framer.timing
-        self.engine.set_timing(timing.char_time, timing.max_silence, timeout, CLOCKS[clock.format])
+        # A capture counting its packets (timefmt.Clock.packets): -t r from its first packet, given the engine as
+        # its first reference; -t d from the packet before each item's (self.befores); -t dd as any capture's.
+        self.packets = clock.packets
+        self.befores: array | None = None
+        self.marked: bool | None = None  # the bus's chunks are marked in `packets` (a serial RTAC bus's are not)
+        mode = CLOCKS[clock.format]
+        if self.packets is not None and clock.format == "d":
+            mode, self.befores = PACKET_DELTAS, array("q")
+        self.engine.set_timing(timing.char_time, timing.max_silence, timeout, mode)
         self.engine.clock_nanos = int(clock.units == NANOS)  # (a nanosecond capture's 9 decimals: timefmt.py)
         self.write_items = write_items
         self.side = PythonSide(dissector, write_items)  # the Python stages' steps over the stream
@@ -87,6 +99,8 @@ class TimedPath:
         self.starts.extend(block.starts)
         self.times.extend(block.times)
         self.flags += block.flags
+        if self.packets is not None:
+            self._packet_refs(block)
         count = len(block.starts)
         self.chunks.extend([None] * count)
         self.owners.extend([block] * count)
@@ -114,11 +128,19 @@ class TimedPath:
     def _engine_frames(self) -> bool:
         """The engine's lines up to where it needs more bytes (False) or hands the stream over (True)."""
         self.numbered = self.engine.count
+        engine = self.engine
+        if self.marked and not engine.has_first and self.packets.start is not None:
+            # (-t r: Clock.observe's first, the capture's first packet, once a bus's chunk is marked)
+            engine.has_first, engine.first_ns = True, self.packets.start
         report = self.report
         if report is not None:
             report.pull()
-        lines, self.pos, status = self.engine.run_timed(self.buf, self.pos, self.base, self.starts, self.times,
-                                                        self.flags)
+        if self.befores is None:
+            lines, self.pos, status = self.engine.run_timed(self.buf, self.pos, self.base, self.starts, self.times,
+                                                            self.flags)
+        else:
+            lines, self.pos, status = self.engine.run_timed(self.buf, self.pos, self.base, self.starts, self.times,
+                                                            self.flags, self.befores)
         if report is not None:
             report.push()
         if lines:
@@ -162,7 +184,7 @@ class TimedPath:
         if self.sync_clock:
             first, previous = self.engine.clock
             clock = self.clock
-            clock.first = None if first is None else Stamp(first)
+            clock.first = None if first is None else (FirstPacket if self.marked else Stamp)(first)
             clock._previous_captured = clock._previous_shown = None if previous is None else Stamp(previous)
 
     # -- the Python stages' side --------------------------------------------------------------------
@@ -262,7 +284,47 @@ class TimedPath:
         del self.chunks[:index]
         del self.owners[:index]
         del self.local[:index]
+        if self.befores is not None:
+            del self.befores[:index]
         self.fed -= index
+        if self.marked and not self.python:
+            # (the engine has the stream: no item before the chunk kept will ask its packet's time, the marks stay
+            # few; the Python stages' pairer may hold a request from before it, their Sinks forget as they show)
+            self.packets.forget(start)
+
+    def _packet_refs(self, block: Block) -> None:
+        """The references of a capture counting its packets (timefmt.Clock.observe with packets), for the block's
+        chunks: the first packet's time as the engine's first (-t r), the packet before each chunk's first byte
+        (-t d), read from the marks the reader made as it gave them (sources/ethernet.py PacketTimes). The
+        engine does not take the stream where the Python stages' reference would differ: a chunk holding a
+        mark past its first byte (another packet's bytes: an item starting there counts from that one), or a
+        bus whose chunks are marked, then not (timefmt.network)."""
+        packets = self.packets
+        marked = network(packets) is not None
+        if self.marked is None:
+            self.marked = marked
+        if marked != self.marked:
+            self.engine_ok = False
+        if not marked:
+            if self.befores is not None:
+                self.befores.extend([NO_BEFORE] * len(block.starts))
+            return
+        if self.befores is None:
+            return
+        offsets, befores = packets.offsets, packets.befores
+        starts = block.starts
+        last = len(offsets) - 1
+        mark = bisect_right(offsets, starts[0]) - 1
+        ends = starts[1:]
+        ends.append(starts[0] + len(block.data))
+        out = self.befores
+        for start, end in zip(starts, ends):
+            while mark < last and offsets[mark + 1] <= start:
+                mark += 1
+            if mark < last and offsets[mark + 1] < end:
+                self.engine_ok = False  # (a mark inside the chunk)
+            before = befores[mark] if mark >= 0 else None
+            out.append(NO_BEFORE if before is None else before)
 
 
 def _exact(time: float | None) -> bool:

@@ -71,9 +71,9 @@ def decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, dissec
         from dissector.accel import framespath, timedpath
 
         # (the engine writes the column in us or ns: a capture's in other units, cut to its precision as
-        # tshark's, are Python's lines)
-        # (nor a network capture's: its references are its packets', timefmt.py Clock.packets, not the items')
-        if (sinks.plain_summary_only and sinks.clock.units in (None, MICROS, NANOS) and sinks.clock.packets is None
+        # tshark's, are Python's lines; a network or several-interface capture's references are its packets',
+        # timefmt.py Clock.packets, which timedpath.TimedPath gives the engine)
+        if (sinks.plain_summary_only and sinks.clock.units in (None, MICROS, NANOS)
                 and timedpath.summarize_input(chunks, dissector, sinks, annotate, warn)):
             return  # pcap, pcapng: the compiled path
         if counted_only(sinks) and timedpath.count_input(chunks, dissector, sinks, annotate, warn):

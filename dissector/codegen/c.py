@@ -13,7 +13,7 @@ from pathlib import Path
 from dissector.errors import GenerateError
 from dissector.protocol import table
 from dissector.protocol.spec import SPEC
-from dissector.accel.timedpath import CLOCKS
+from dissector.accel.timedpath import CLOCKS, PACKET_DELTAS
 from dissector.codegen import c_rules, c_stats
 from dissector.protocol.table import Counted, Fixed, Layout, LengthRule, Scan, Select, Special
 
@@ -77,8 +77,10 @@ def _slot_rows(slots: list[int]) -> list[str]:
 
 def _clocks() -> list[str]:
     return [
-        "/* The time column -t r's code (accel/timedpath.py CLOCKS; the others' are deltas), for _timeline.h. */",
+        "/* The time column -t r's code (accel/timedpath.py CLOCKS; the others' are deltas), and -t d's counted from",
+        " * the packet before each item's first (PACKET_DELTAS: a network or several-interface capture's), for _timeline.h. */",
         f"#define CLOCK_RELATIVE {CLOCKS['r']}",
+        f"#define CLOCK_PACKETS {PACKET_DELTAS}",
     ]
 
 
