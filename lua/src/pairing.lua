@@ -271,15 +271,35 @@ local function pair(st, f)
   end
 end
 
+-- Is the length on the line of a record of which no byte was captured (RTU bytes; an ASCII line 2 characters a
+-- byte, its LRC's too, and `:` and CR LF) one an answer to `pending` has (pairing.py _answer_size): its
+-- exception's, or its normal answer's where the request fixes it (a fixed length rule; a run of what it asked,
+-- DATA.lanes.run_answers), else any from an exception's up?
+local RULES, SHORTEST, RUNS = DATA.protocol.rules, DATA.protocol.exception_rule[2], DATA.lanes.run_answers
+local function answer_size(pending, part)
+  local size = part.check == "CRC" and part.original or (part.original - 1) / 2
+  local rule, run, quantity, normal = RULES[pending.fn], RUNS[pending.fn], pending.quantity, nil
+  if rule ~= nil and rule[2][1] == "fixed" then
+    normal = rule[2][2]
+  elseif run ~= nil and quantity ~= nil then
+    local bits = (quantity + 7 - (quantity + 7) % 8) / 8 -- (unit 0: bits, 8 a byte)
+    normal = run.extra + (run.unit > 0 and quantity * run.unit or bits)
+  end
+  return size == SHORTEST or size == normal or (normal == nil and size >= SHORTEST)
+end
+
 -- A record captured in part (vw3.stream's cut_stream), numbered, of the open request's slave and function (or
 -- its exception's), within the timeout: the slave answered, its answer's bytes cut by the snapshot length
 -- (pairing.py _answer_in_part, ANSWER_IN_PART). The request is answered, its note names the item, whose reason
--- names the request (`...; slave 2, function 3; the answer to #1): its CRC cannot be checked`).
+-- names the request (`...; slave 2, function 3; the answer to #1): its CRC cannot be checked`); one of no byte
+-- captured, where its length fits (answer_size): only the slave asked speaks then.
 local function pair_part(st, item)
   local pending = st.pending
   if pending == nil or pending.answerless or timed_out(st, pending, item.time) then return end
   local part = item.part
-  if part.slave ~= pending.slave or (part.fn ~= nil and part.fn % 128 ~= pending.fn) then return end
+  if part.slave == nil then -- (no byte captured: its length on the line tells)
+    if not answer_size(pending, part) then return end
+  elseif part.slave ~= pending.slave or (part.fn ~= nil and part.fn % 128 ~= pending.fn) then return end
   note(pending, format(DATA.pairing.answer_in_part, item.number))
   part.answers = pending.number
   item.reason = part_reason(part)
