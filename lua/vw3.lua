@@ -1918,7 +1918,7 @@ local DATA = {
       {
         ["abbr"] = "vw3.event_list",
         ["ftype"] = "uint8",
-        ["title"] = "Event list",
+        ["title"] = "Event",
         ["help"] = "PDU key of function 12",
         ["base"] = "DEC",
       },
