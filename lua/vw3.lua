@@ -1918,7 +1918,7 @@ local DATA = {
       {
         ["abbr"] = "vw3.event_list",
         ["ftype"] = "uint8",
-        ["title"] = "Event list",
+        ["title"] = "Event",
         ["help"] = "PDU key of function 12",
         ["base"] = "DEC",
       },
@@ -8070,8 +8070,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local PLC_LABELS, address_name, address_runs, concat = PLC_LABELS, address_name, address_runs, concat
 local consecutive, has_note, interpret, interpret_wide = consecutive, has_note, interpret, interpret_wide
-local ipairs, math, next, note, rows_before, rows_for, say = ipairs, math, next, note, rows_before, rows_for, say
-local span_name, table = span_name, table
+local ipairs, math, next, note, register_at, rows_before = ipairs, math, next, note, register_at, rows_before
+local rows_for, say, span_name, table = rows_for, say, span_name, table
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
@@ -8147,11 +8147,10 @@ local function track(seen, f, address, row, value, status, now, label)
 end
 
 local function remember_writes(seen, number, run, b)
-  local start, k = run.start, run.first -- (register_at, written out: a register of a run in b)
-  if start == nil then return end
+  if run.start == nil then return end
   for index = 0, run.count - 1 do
-    remember(seen, (start + index) % 0x10000, b[k] * 256 + b[k + 1], number, "written")
-    k = k + 2
+    local address, value = register_at(run, b, index)
+    remember(seen, address, value, number, "written")
   end
 end
 
@@ -8792,12 +8791,14 @@ function lane.quiet(st, slave, fn, answer)
   return done or judged
 end
 
--- A provisional frame kept, per slave until its choice, for the chosen device to annotate again
+-- A frame provisional (Frame.provisional; st.provisional, lane.again: the later passes show no frame
+-- provisional), kept, per slave until its choice, for the chosen device to annotate again
 -- (lane.annotate_again; annotator.py _held, _scratch): a copy the annotate path may change freely, taken before the frame is
 -- annotated and its bytes released (take_frame): its own runs (its request's too, with their bytes),
 -- device objects, no notes or warnings. Bounded: a slave's frames
 -- are provisional until FIT_FRAMES of them at most.
 local function hold(st, f, b)
+  f.provisional, st.provisional = true, true
   local copy = copied(f)
   copy.b, copy.notes, copy.warnings, copy.events = b, nil, nil, nil
   if f.registers ~= nil then copy.registers = copied(f.registers) end
@@ -8835,8 +8836,6 @@ local function select_device(st, f, b)
     -- (decoded again, the capture so far is read as a file: no frame provisional; a record read after
     -- that, in a capture that goes on, is read once again: lane.again's `going_on`)
     if judged and open(judged) and (st.frozen == nil or st.going_on) then
-      f.provisional = true
-      st.provisional = true -- (lane.again: the later passes show no frame provisional)
       hold(st, f, b)
     elseif st.held ~= nil and judged and settled(judged) then
       st.held[slave] = nil -- (settled without a choice: the device it has saw those frames)
@@ -8863,7 +8862,6 @@ local function select_device(st, f, b)
       lane.annotate_again(st, device, held) -- (defined with the annotate path, lua/src/annotator.lua)
     end
     if open(st.judged[slave]) then -- (a choice taken back: no device while evidence may still come)
-      f.provisional, st.provisional = true, true
       hold(st, f, b)
     end
   end

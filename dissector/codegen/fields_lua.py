@@ -152,12 +152,14 @@ def proto_fields() -> list[dict[str, Any]]:
 def derived_fields() -> list[dict[str, Any]]:
     """A field per key the decode adds to a PDU's fields beyond its layout's (render/filter_fields.py
     DERIVED_KEYS: FC12's fields.event_list), as vw3.<key>, the plugin's name of fields.<key> (filter_fields
-    foreign_name), of its elements' type, titled as -V labels the key, its help vw3-decode's -G fields blurb;
-    base DEC, -G fields' base of fields.<key>, so -T fields writes the values as vw3-decode's (modbus.event's).
-    lua/src/tree.lua adds it."""
+    foreign_name), of its elements' type, its help vw3-decode's -G fields blurb; base DEC, -G fields' base of
+    fields.<key>, so -T fields writes the values as vw3-decode's (modbus.event's). Titled by what one
+    occurrence is, an element of the list (`Event`, as -V labels an element's event), as tshark titles its
+    field of one occurrence an element (modbus.event: `Event`) and the plugin its own (`FIFO value`): a
+    column or the status bar then names one event, not the list. lua/src/tree.lua adds it."""
     from dissector.render.detail import field_label
 
-    return [{"filter": f"vw3.{key}", "ftype": ftype, "title": field_label(key), "base": "DEC",
+    return [{"filter": f"vw3.{key}", "ftype": ftype, "title": field_label(key.removesuffix("_list")), "base": "DEC",
              "help": owners_text((owner,))} for key, (owner, _value, ftype) in DERIVED_KEYS.items()]
 
 

@@ -210,12 +210,14 @@ function lane.quiet(st, slave, fn, answer)
   return done or judged
 end
 
--- A provisional frame kept, per slave until its choice, for the chosen device to annotate again
+-- A frame provisional (Frame.provisional; st.provisional, lane.again: the later passes show no frame
+-- provisional), kept, per slave until its choice, for the chosen device to annotate again
 -- (lane.annotate_again; annotator.py _held, _scratch): a copy the annotate path may change freely, taken before the frame is
 -- annotated and its bytes released (take_frame): its own runs (its request's too, with their bytes),
 -- device objects, no notes or warnings. Bounded: a slave's frames
 -- are provisional until FIT_FRAMES of them at most.
 local function hold(st, f, b)
+  f.provisional, st.provisional = true, true
   local copy = copied(f)
   copy.b, copy.notes, copy.warnings, copy.events = b, nil, nil, nil
   if f.registers ~= nil then copy.registers = copied(f.registers) end
@@ -253,8 +255,6 @@ local function select_device(st, f, b)
     -- (decoded again, the capture so far is read as a file: no frame provisional; a record read after
     -- that, in a capture that goes on, is read once again: lane.again's `going_on`)
     if judged and open(judged) and (st.frozen == nil or st.going_on) then
-      f.provisional = true
-      st.provisional = true -- (lane.again: the later passes show no frame provisional)
       hold(st, f, b)
     elseif st.held ~= nil and judged and settled(judged) then
       st.held[slave] = nil -- (settled without a choice: the device it has saw those frames)
@@ -281,7 +281,6 @@ local function select_device(st, f, b)
       lane.annotate_again(st, device, held) -- (defined with the annotate path, lua/src/annotator.lua)
     end
     if open(st.judged[slave]) then -- (a choice taken back: no device while evidence may still come)
-      f.provisional, st.provisional = true, true
       hold(st, f, b)
     end
   end

@@ -76,11 +76,10 @@ local function track(seen, f, address, row, value, status, now, label)
 end
 
 local function remember_writes(seen, number, run, b)
-  local start, k = run.start, run.first -- (register_at, written out: a register of a run in b)
-  if start == nil then return end
+  if run.start == nil then return end
   for index = 0, run.count - 1 do
-    remember(seen, (start + index) % 0x10000, b[k] * 256 + b[k + 1], number, "written")
-    k = k + 2
+    local address, value = register_at(run, b, index)
+    remember(seen, address, value, number, "written")
   end
 end
 

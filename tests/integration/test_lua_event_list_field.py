@@ -5,14 +5,15 @@ the plugin's vw3.event_list (codegen/fields_lua.py derived_fields, the vw3.<key>
 (`Some fields aren't valid: vw3.event_list`). Real tshark with -X lua_script:lua/vw3.lua."""
 from __future__ import annotations
 
+import subprocess
 from pathlib import Path
 
 import pytest
 
 from helpers import rtu, run_cli
-from lua_harness import lua_errors, run_tshark, write_pcap
+from lua_harness import PLUGIN, ensure_tool, lua_errors, run_tshark, write_pcap
 
-from dissector.render.filter_fields import DERIVED_KEYS
+from dissector.render.filter_fields import DERIVED_KEYS, FOREIGN_NAMES
 
 pytestmark = pytest.mark.integration
 
@@ -57,3 +58,18 @@ def test_the_tree_says_each_event_as_before(tmp_path: Path) -> None:
     tree = _plugin(_pcap(tmp_path), "-V", "-O", "vw3").splitlines()
     start = next(index for index, line in enumerate(tree) if line.strip() == "Event list (4)")
     assert [line.strip() for line in tree[start + 1:start + 4]] == ["[0]", "Byte: 3 (0x3)", "Event: Unknown Event"]
+
+
+def test_titled_as_tsharks_field_of_the_same_events() -> None:
+    """Each derived key's field is titled as tshark 4.0.17 titles its own field of the same occurrences (the
+    foreign name vw3-decode maps to fields.<key>: modbus.event), by what one occurrence is, `Event`: what a
+    column of it and the status bar show. Before: `Event list`, the name of the whole list."""
+    tshark = ensure_tool("tshark", "tshark")
+    listing = subprocess.run([tshark, "-G", "fields", "-X", f"lua_script:{PLUGIN}"], capture_output=True,
+                             text=True, timeout=600, check=True).stdout.splitlines()
+    rows = {line.split("\t")[2]: line.split("\t") for line in listing if line.startswith("F\t")}
+    for key in DERIVED_KEYS:
+        theirs = [name for name, ours in FOREIGN_NAMES.items() if ours == f"fields.{key}"]
+        assert theirs == ["modbus.event"]  # (another: its tshark field here)
+        plugin, tsharks = rows[f"vw3.{key}"], rows[theirs[0]]
+        assert (plugin[1], plugin[3], plugin[5]) == (tsharks[1], tsharks[3], tsharks[5]) == ("Event", "FT_UINT8", "BASE_DEC")
