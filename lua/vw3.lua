@@ -1740,14 +1740,14 @@ local DATA = {
       {
         ["abbr"] = "vw3.and_mask",
         ["ftype"] = "uint16",
-        ["title"] = "And mask",
+        ["title"] = "AND mask",
         ["help"] = "FC22's AND mask",
         ["base"] = "DEC_HEX",
       },
       {
         ["abbr"] = "vw3.or_mask",
         ["ftype"] = "uint16",
-        ["title"] = "Or mask",
+        ["title"] = "OR mask",
         ["help"] = "FC22's OR mask",
         ["base"] = "DEC_HEX",
       },

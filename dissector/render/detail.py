@@ -100,14 +100,26 @@ _NAMED = {key: getattr(SPEC, entry["values"]) for key, entry in _CATALOGUE_KEYS.
           if entry.get("values") in ("diagnostics", "exceptions")}
 
 
+def _key_words(key: str) -> str:
+    words = [_ACRONYMS.get(word, word) for word in key.split("_")]
+    words[0] = words[0][:1].upper() + words[0][1:]
+    return " ".join(words)
+
+
+# The plugin's spelling of a PDU key's own words (data/pdu_fields.toml: FC22's `AND mask`, as tshark titles
+# modbus.and_mask), so -V writes them as its tree does; a title in other words (a list's `FIFO value`, one
+# element's) is the plugin's field, not -V's label.
+_SPELLED = {leaf: entry["title"] for entry in pdu_fields()["field"] for leaf in
+            (path.rpartition(".")[2] for path in entry.get("pdu", ()))
+            if entry["title"] != _key_words(leaf) and entry["title"].lower() == _key_words(leaf).lower()}
+
+
 def field_label(key: str, function: int | None = None) -> str:
     label = FUNCTION_LABELS.get((function, key)) if function is not None else None
     if label is None:
         label = _TITLES.get(key)
     if label is None:
-        words = [_ACRONYMS.get(word, word) for word in key.split("_")]
-        words[0] = words[0][:1].upper() + words[0][1:]
-        label = " ".join(words)
+        label = _SPELLED.get(key) or _key_words(key)
     return label
 
 

@@ -6,7 +6,7 @@
   START_WORDS); none where the request is not known;
 - the hex of a field the plugin shows in decimal and hex (data/pdu_fields.toml base DEC_HEX: a status word,
   a mask, FC8's more-follows byte) written at the field's width in the frame, data/modbus.toml [layouts]
-  (`Status: 0 (0x0000)` for FC11's 16-bit status word, `And mask: 242 (0x00F2)`, `More follows: 0 (0x00)`,
+  (`Status: 0 (0x0000)` for FC11's 16-bit status word, `AND mask: 242 (0x00F2)`, `More follows: 0 (0x00)`,
   FC17's `Server id: 1 (0x01)`, each word of FC24's FIFO values and FC20's record `[0]: 1 (0x0001)`),
   as Wireshark writes a field's hex; other numbers keep their shortest hex (`Start address: 100 (0x64)`);
 - the quantity of one that FC5's, FC6's and FC22's window has without its bytes counting it, `[Quantity: 1]`

@@ -61,8 +61,8 @@ def test_detail_shows_the_register(monkeypatch: pytest.MonkeyPatch) -> None:
     """-V lists it as a register too, after the masks (as the plugin's tree does)."""
     out, _framed = engine_output_as_python(_argv("-V"), monkeypatch)
     frames = out.split("\n\n")
-    assert ("        Or mask: 37 (0x0025)\n        Register 40: no value\n"
+    assert ("        OR mask: 37 (0x0025)\n        Register 40: no value\n"
             f"            Value: {UNKNOWN}\n        CRC: 0x28F6 [CRC ok]\n") in frames[0]
-    assert ("        Or mask: 37 (0x0025)\n        Register 41: 37 (0x0025)\n"
+    assert ("        OR mask: 37 (0x0025)\n        Register 41: 37 (0x0025)\n"
             "            Value: AND 0x0000 OR 0x0025\n        CRC: 0x1B6A [CRC ok]\n") in frames[2]
     assert "        Register" not in frames[5]  # (the exception)

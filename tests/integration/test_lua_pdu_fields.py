@@ -78,7 +78,7 @@ TREES: list[tuple[str, list[str]]] = [
         "        Value: 4109 (0x100d)"]) for kind in ("request", "response")
 ] + [
     (f"VW3 Modbus RTU, 1 Mask Write Register {kind} 4 AND 0x00F2 OR 0x0025", [
-        "    Address: 4", "    [Quantity: 1]", "    And mask: 242 (0x00f2)", "    Or mask: 37 (0x0025)",
+        "    Address: 4", "    [Quantity: 1]", "    AND mask: 242 (0x00f2)", "    OR mask: 37 (0x0025)",
         # (its register, as vw3-decode --json lists it: render/registers.py mask_register)
         "    Register 4: AND 0x00F2 OR 0x0025: the result depends on the value before", "        [Address: 4]",
         "        [Meaning: AND 0x00F2 OR 0x0025: the result depends on the value before]"])

@@ -69,9 +69,9 @@ def test_the_tree_places_them_as_vw3_decode_does(capture: Path) -> None:
     assert python[0][-4:-1] == ["        Value: 3 (0x0003)", "        Trailing: aabb", "        Register 1: 3 (0x0003)"]
     assert plugin[2][-3:] == ["    Byte count: 2", "    Trailing: aabb", "    Register 0 = 5"]
     assert python[2][-4:-1] == ["        Byte count: 2 (0x2)", "        Trailing: aabb", "        Register 0: 5 (0x0005)"]
-    assert plugin[3][-3:] == ["    Or mask: 37 (0x0025)", "    Trailing: cc",
+    assert plugin[3][-3:] == ["    OR mask: 37 (0x0025)", "    Trailing: cc",
                               "    Register 4: AND 0x00F2 OR 0x0025: the result depends on the value before"]
-    assert python[3][-4:-1] == ["        Or mask: 37 (0x0025)", "        Trailing: cc", "        Register 4: no value"]
+    assert python[3][-4:-1] == ["        OR mask: 37 (0x0025)", "        Trailing: cc", "        Register 4: no value"]
     assert plugin[4][-3:] == ["    Byte count: 2", "    Trailing: ddee", "    Register 0 = 7"]
     assert python[4][-4:-1] == ["        Byte count: 2 (0x2)", "        Trailing: ddee", "        Register 0: 7 (0x0007)"]
     # An exception's: after its code, in both trees (as --json and -Y have the byte).

@@ -33,12 +33,12 @@ FRAMES = [
     rtu("01 2B 0E 01 00"), rtu("01 2B 0E 01 01 00 00 01 00 03 41 42 43"),  # FC43/14, more follows 0
     rtu("01 03 02 0009"),  # an answer without its request: no start, its byte count's quantity
 ]
-WANTED = ("[Start address", "[Quantity", "[FIFO pointer", "Status:", "And mask", "Or mask", "More follows")
+WANTED = ("[Start address", "[Quantity", "[FIFO pointer", "Status:", "AND mask", "OR mask", "More follows")
 EXPECTED = [
     "[Start address: 10]", "[Quantity: 2]", "[Start address: 5]", "[Quantity: 13]",
     "[Start address: 10]", "[Quantity: 2]", "[FIFO pointer address: 7]", "Status: 0 (0x0000)",
-    "Status: 65535 (0xFFFF)", "[Quantity: 1]", "And mask: 242 (0x00F2)", "Or mask: 37 (0x0025)", "[Quantity: 1]",
-    "And mask: 242 (0x00F2)", "Or mask: 37 (0x0025)", "More follows: 0 (0x00)", "[Quantity: 1]",
+    "Status: 65535 (0xFFFF)", "[Quantity: 1]", "AND mask: 242 (0x00F2)", "OR mask: 37 (0x0025)", "[Quantity: 1]",
+    "AND mask: 242 (0x00F2)", "OR mask: 37 (0x0025)", "More follows: 0 (0x00)", "[Quantity: 1]",
 ]
 
 
