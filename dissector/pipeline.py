@@ -21,6 +21,8 @@ class Framer(Protocol):
 
     def finish(self) -> list[Item]: ...
 
+    def finish_at(self, end: float | None) -> list[Item]: ...
+
 
 Annotator = Callable[[Frame], None]
 
@@ -91,10 +93,12 @@ class Dissector:
         return self._finish_items(self.pairer.push(self.framer.finish()))
 
     def finish(self) -> list[Item]:
-        items = self.pairer.push(self.framer.finish())
         recorded = self.recorded() if self._stamps_end and self.recorded is not None else None
         if recorded is not None and (self.pairer.end is None or stamped_before(self.pairer.end, recorded)):
             self.pairer.end = recorded
+        # The capture ends then (a file: its last record; live: the stop, set by the display): what the framer
+        # holds is cut by a silence before it or by the end, by the line's one rule (StreamFramer.finish_at).
+        items = self.pairer.push(self.framer.finish_at(self.pairer.end))
         items += self.pairer.finish()
         return self._finish_items(items)
 

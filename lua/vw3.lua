@@ -5176,11 +5176,20 @@ local function inner_gaps(s, frame)
   end
 end
 
--- Was the line silent for t3.5 before the record at s.times[index] (stream.py feed, timing.silence_before: from
--- the record before it, less that record's bytes' time on the line)?
-local function silent_before(times, index)
-  local time, before = times[index + 1], times[index - 1]
-  return time and before and (time - before) / NS - (times[index] - times[index - 2]) * CHAR_TIME >= T35
+-- Was the line silent for t3.5 before bytes at stream offset `start` that came at `time`, after the record at
+-- times[index] (timing.silence_before: from that record's time, less its bytes' time on the line)? Before the next
+-- record (feed), before the end of the capture (vw3.records finish): stream.py _silent_until, the one rule.
+local function silent_before(times, index, start, time)
+  local before = times[index + 1]
+  return time and before and (time - before) / NS - (start - times[index]) * CHAR_TIME >= T35
+end
+
+-- Was the line silent t3.5 from the bytes held until the capture's last record (any stream's, empty or not:
+-- recorded_until), as before the next bytes? Then a silence cuts them, not the end of the capture, as live closes
+-- them at one; never on an ASCII line, whose frame ends at its LF (stream.py finish_at).
+local function silent_at_end(s)
+  local times = s.times
+  return s.mode ~= "ascii" and s.n > 0 and silent_before(times, #times - 1, s.base + s.n, recorded_until)
 end
 
 -- The index of the first record after i, before n, that a silence of t3.5 comes before (stream.py _silences), nil:
@@ -5484,8 +5493,8 @@ M.boundary_at, M.cut_reason, M.cut_stream, M.drop_first = boundary_at, cut_reaso
 M.emit, M.expect_after, M.first_above, M.first_after = emit, expect_after, first_above, first_after
 M.flush_noise, M.lane, M.no_frame, M.not_the_answer = flush_noise, lane, no_frame, not_the_answer
 M.part_reason, M.plausible_request, M.record_start = part_reason, plausible_request, record_start
-M.repeats, M.silence_after, M.silent_before, M.time_at = repeats, silence_after, silent_before, time_at
-M.whole_crc_good = whole_crc_good
+M.repeats, M.silence_after, M.silent_at_end, M.silent_before = repeats, silence_after, silent_at_end, silent_before
+M.time_at, M.whole_crc_good = time_at, whole_crc_good
 end
 
 -- ---- vw3.rtu: lua/src/rtu.lua ----
@@ -5677,7 +5686,7 @@ end
 local function followed(s, b, stop, n, final, at_end)
   local j = stop
   while true do
-    if final and j == n then return at_end ~= false end
+    if final and j == n then return at_end ~= false or s.cut_by_silence end -- (a silence at the end: a boundary)
     if boundary_at(s, j) then return true end
     local found = valid_frame_at(s, b, j, n, final)
     if found ~= false then return found end
@@ -6014,7 +6023,8 @@ local function run_rtu(s, final, items)
         i = stop
         stop, cut = silence_cut(s, b, i, n)
       end
-      add_noise(s, i, n, cut_answer(s, b, i, n) or cut_request(s, b, i, n) or TOO_SHORT, items)
+      local silence = s.cut_by_silence -- (a silence before the end of the capture: vw3.records finish)
+      add_noise(s, i, n, cut_answer(s, b, i, n, silence) or cut_request(s, b, i, n, silence) or TOO_SHORT, items)
       return n
     end
     local stop = i -- (noise to stop: a repetition decided before, or bytes no frame starts at)
@@ -6056,7 +6066,7 @@ local function run_rtu(s, final, items)
         end
       end
       if kind == nil then
-        local cut = final and (cut_answer(s, b, i, n) or cut_request(s, b, i, n))
+        local cut = final and (cut_answer(s, b, i, n, s.cut_by_silence) or cut_request(s, b, i, n, s.cut_by_silence))
         if cut then
           -- (noise: up to a silence inside that cuts them first, as live closed them there)
           local upto, silence = silence_cut(s, b, i, n)
@@ -6554,7 +6564,7 @@ local function feed(s, bytes, time, boundary, final, built)
     times[count + 1] = s.base + at
     if time == nil then times[count + 2] = false else times[count + 2] = time end
     -- (a silence of t3.5 before the record: stream.py feed; a record is only ever added after the ones kept)
-    if count > 0 and silent_before(times, count + 1) then silences[#silences + 1] = s.base + at end
+    if count > 0 and silent_before(times, count - 1, s.base + at, time) then silences[#silences + 1] = s.base + at end
     s.n = at + n
     if boundary then s.boundaries[#s.boundaries + 1] = s.base + s.n end
   end
@@ -9262,8 +9272,8 @@ local decode_frame, device_for, device_now, drop_first = decode_frame, device_fo
 local feed, feed_whole, head_slot, lane, math, new_state = feed, feed_whole, head_slot, lane, math, new_state
 local next, pack, pair, pair_part, pairs, pcall, put_flat = next, pack, pair, pair_part, pairs, pcall, put_flat
 local release_run, remember_writes, run_slot, sample_mode = release_run, remember_writes, run_slot, sample_mode
-local span_slot, story, string, string_of, takes_whole = span_slot, story, string, string_of, takes_whole
-local tostring, type, warn, whole_crc_good = tostring, type, warn, whole_crc_good
+local silent_at_end, span_slot, story, string, string_of = silent_at_end, span_slot, story, string, string_of
+local takes_whole, tostring, type, warn, whole_crc_good = takes_whole, tostring, type, warn, whole_crc_good
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -9752,7 +9762,9 @@ local function finish(st)
   st.finished = true
   local record = st.last
   if record == nil then return end
+  st.cut_by_silence = silent_at_end(st) -- (what it holds is cut by a silence before the end, or by the end)
   local items = feed(st, "", nil, false, true)
+  st.cut_by_silence = nil
   for index = 1, #items do
     -- The answer awaited cut by the end of the capture: said on the request (model.py CUT_ANSWER).
     local reason, cut = items[index].reason, FRAMING.cut_answer

@@ -370,3 +370,6 @@ class _CountedFramer:
 
     def finish(self, silence: bool = False) -> list[Item]:
         return self._live._cut_framed(self._framer.finish(silence))
+
+    def finish_at(self, end: float | None) -> list[Item]:
+        return self._live._cut_framed(self._framer.finish_at(end))

@@ -346,7 +346,7 @@ class CaptureThread:
         ASCII: a frame ends at its LF, and may hold a second's silence (timing.ASCII_LIMIT); the decode of
         the -w file cuts neither a frame nor a noise run at a silence (framing/stream.py _add_noise), so
         live holds them as it does (a partial frame is closed when the capture ends)."""
-        if getattr(self.framer, "mode", None) == "ascii":
+        if not self.framer.silence_cuts:  # type: ignore[union-attr]
             return False
         if silent >= self.silence_long:
             return True
@@ -396,12 +396,14 @@ class CaptureThread:
     def end(self) -> None:
         """The capture is over: what the framer holds is closed and written, the files closed."""
         try:
+            # (what the framer holds is cut by a silence before the stop, by the line's rule, or by the stop:
+            # StreamFramer.finish_at, as the decode of -w, whose closing record is at the stop, judges it)
             if self.framer is None:
                 pass  # (the display frames: it finishes when the hand-off closes)
             elif self.reason != "count" and self.status == ExitStatus.OK:
-                self.deliver(self.framer.finish(), None)
+                self.deliver(self.framer.finish_at(self.stopped_at()), None)
             elif self.status != ExitStatus.OK and not self.reason.startswith("cannot write"):
-                self.deliver(self.framer.finish(), None)  # a vanished port: keep the bytes read
+                self.deliver(self.framer.finish_at(self.stopped_at()), None)  # a vanished port: keep the bytes read
             if self.framer is not None and not self.reason.startswith("cannot write"):
                 self.handoff.put(self.files.release(None), None)
         except LiveError as error:

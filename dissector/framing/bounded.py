@@ -118,11 +118,11 @@ class Bounded:
         if first is None:
             return None
         stop = first - base
-        self._cut_by_silence = True
+        was, self._cut_by_silence = self._cut_by_silence, True
         try:
             reason = self._cut_tail(buf, i, stop)
         finally:
-            self._cut_by_silence = False
+            self._cut_by_silence = was  # (finish_at's, for the bytes after the silence)
         return (stop, reason) if reason is not None and not self._checks_out(buf, i, n) else None
 
     def _no_frame(self, i: int) -> str:

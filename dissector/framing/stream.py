@@ -108,7 +108,7 @@ class StreamFramer(ABC):
             byte_times = chunk.times if isinstance(chunk, ByteTimedChunk) else None
             if chunk.time is not None:
                 self._timed = True
-                if self._times and silence_before(self._last_run(), start, chunk.time, self._timing):
+                if self._silent_until(chunk.time):
                     self._boundaries.add(start)  # a silence on the line: evidence, like a record's end
                     self._silences.add(start)
                 if byte_times is not None and byte_times.step_us != self._steady_step:
@@ -178,6 +178,27 @@ class StreamFramer(ABC):
             self._cut_by_silence = False
         self._flush_noise(items)
         return items
+
+    def finish_at(self, end: float | None) -> list[Item]:
+        """Close what is buffered at the end of the capture, the tap recording until `end` (a file's last record,
+        live's stop; None: not known). The line silent from its last bytes until then, as a silence is before the
+        next bytes (_silent_until), cut what the framer holds, as live closes it at a silence: the capture went on
+        past it (a file said the capture's end cut the answer live said a silence cut: hunt66b); else the end
+        did. In ASCII no silence cuts (silence_cuts)."""
+        return self.finish(silence=end is not None and self.silence_cuts and self._silent_until(end))
+
+    @property
+    def silence_cuts(self) -> bool:
+        """Does a silence on this line cut a frame or a noise run? RTU's, of t3.5 (_silent_until); an ASCII
+        frame ends at its LF and may hold a second's silence (timing.ASCII_LIMIT): live closes nothing at one
+        (live_capture.CaptureThread.flush_due) and a file cuts nothing there (_add_noise, finish_at)."""
+        return self.mode == "rtu"
+
+    def _silent_until(self, time: float) -> bool:
+        """Was the line silent t3.5 or more (timing.silence_before) from the last bytes fed until `time`: before
+        the next chunk (feed), before the end of the capture (finish_at)? The one rule of what a silence is."""
+        return bool(self._times) and silence_before(self._last_run(), self._base + len(self._buf), time,
+                                                    self._timing)
 
     @property
     def timing(self) -> LineTiming:
@@ -316,7 +337,7 @@ class StreamFramer(ABC):
                 check_from = inside[-1] - self._base
         if self._glitches_only:
             self._glitches_only = not buf[check_from:end].translate(None, _GLITCHES)
-        if self._silences and self.mode == "rtu":  # (ASCII allows a second's silence inside a frame)
+        if self._silences and self.silence_cuts:
             base = self._base
             for at in [offset - base for offset in self._silences.within(base + start, base + end)]:
                 if at > start:

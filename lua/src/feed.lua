@@ -98,7 +98,7 @@ local function feed(s, bytes, time, boundary, final, built)
     times[count + 1] = s.base + at
     if time == nil then times[count + 2] = false else times[count + 2] = time end
     -- (a silence of t3.5 before the record: stream.py feed; a record is only ever added after the ones kept)
-    if count > 0 and silent_before(times, count + 1) then silences[#silences + 1] = s.base + at end
+    if count > 0 and silent_before(times, count - 1, s.base + at, time) then silences[#silences + 1] = s.base + at end
     s.n = at + n
     if boundary then s.boundaries[#s.boundaries + 1] = s.base + s.n end
   end

@@ -489,7 +489,9 @@ local function finish(st)
   st.finished = true
   local record = st.last
   if record == nil then return end
+  st.cut_by_silence = silent_at_end(st) -- (what it holds is cut by a silence before the end, or by the end)
   local items = feed(st, "", nil, false, true)
+  st.cut_by_silence = nil
   for index = 1, #items do
     -- The answer awaited cut by the end of the capture: said on the request (model.py CUT_ANSWER).
     local reason, cut = items[index].reason, FRAMING.cut_answer

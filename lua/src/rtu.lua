@@ -173,7 +173,7 @@ end
 local function followed(s, b, stop, n, final, at_end)
   local j = stop
   while true do
-    if final and j == n then return at_end ~= false end
+    if final and j == n then return at_end ~= false or s.cut_by_silence end -- (a silence at the end: a boundary)
     if boundary_at(s, j) then return true end
     local found = valid_frame_at(s, b, j, n, final)
     if found ~= false then return found end
@@ -510,7 +510,8 @@ local function run_rtu(s, final, items)
         i = stop
         stop, cut = silence_cut(s, b, i, n)
       end
-      add_noise(s, i, n, cut_answer(s, b, i, n) or cut_request(s, b, i, n) or TOO_SHORT, items)
+      local silence = s.cut_by_silence -- (a silence before the end of the capture: vw3.records finish)
+      add_noise(s, i, n, cut_answer(s, b, i, n, silence) or cut_request(s, b, i, n, silence) or TOO_SHORT, items)
       return n
     end
     local stop = i -- (noise to stop: a repetition decided before, or bytes no frame starts at)
@@ -552,7 +553,7 @@ local function run_rtu(s, final, items)
         end
       end
       if kind == nil then
-        local cut = final and (cut_answer(s, b, i, n) or cut_request(s, b, i, n))
+        local cut = final and (cut_answer(s, b, i, n, s.cut_by_silence) or cut_request(s, b, i, n, s.cut_by_silence))
         if cut then
           -- (noise: up to a silence inside that cuts them first, as live closed them there)
           local upto, silence = silence_cut(s, b, i, n)

@@ -145,11 +145,20 @@ local function inner_gaps(s, frame)
   end
 end
 
--- Was the line silent for t3.5 before the record at s.times[index] (stream.py feed, timing.silence_before: from
--- the record before it, less that record's bytes' time on the line)?
-local function silent_before(times, index)
-  local time, before = times[index + 1], times[index - 1]
-  return time and before and (time - before) / NS - (times[index] - times[index - 2]) * CHAR_TIME >= T35
+-- Was the line silent for t3.5 before bytes at stream offset `start` that came at `time`, after the record at
+-- times[index] (timing.silence_before: from that record's time, less its bytes' time on the line)? Before the next
+-- record (feed), before the end of the capture (vw3.records finish): stream.py _silent_until, the one rule.
+local function silent_before(times, index, start, time)
+  local before = times[index + 1]
+  return time and before and (time - before) / NS - (start - times[index]) * CHAR_TIME >= T35
+end
+
+-- Was the line silent t3.5 from the bytes held until the capture's last record (any stream's, empty or not:
+-- recorded_until), as before the next bytes? Then a silence cuts them, not the end of the capture, as live closes
+-- them at one; never on an ASCII line, whose frame ends at its LF (stream.py finish_at).
+local function silent_at_end(s)
+  local times = s.times
+  return s.mode ~= "ascii" and s.n > 0 and silent_before(times, #times - 1, s.base + s.n, recorded_until)
 end
 
 -- The index of the first record after i, before n, that a silence of t3.5 comes before (stream.py _silences), nil:
