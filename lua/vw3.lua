@@ -4847,7 +4847,8 @@ package.preload["vw3.layouts"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.layouts"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, crc_ok_at, floor, pairs = DATA, crc_ok_at, floor, pairs
+local DATA, concat, crc_ok_at, floor, math, pairs, string = DATA, concat, crc_ok_at, floor, math, pairs, string
+local table = table
 
 -- ---------------------------------------------------------------------------------------------------
 -- Framing (dissector/framing/rtu.py): length rules per function code and direction, CRC to confirm.
@@ -4952,12 +4953,35 @@ for code, rules in pairs(DATA.protocol.rules) do
 end
 local NO_INTERPRETATION = {}
 
--- Do the bytes from b[i] (up to b[n - 1]) repeat the echo awaited, as far as they have come?
+-- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
+local function string_of(b, first, count)
+  if count <= 200 then return string.char(table.unpack(b, first, first + count - 1)) end
+  local parts = {}
+  for k = 0, count - 1, 200 do -- (200 at a time: unpack puts them on the stack, string.char's arguments)
+    parts[#parts + 1] = string.char(table.unpack(b, first + k, first + math.min(k + 200, count) - 1))
+  end
+  return concat(parts)
+end
+
+-- What a frame holds of the bytes the spec has an answer echo (DATA.pairing.echo: FC8's sub-function), as a
+-- string (fewer bytes where the frame ends first); nil: none. The framer awaits them in the answer (st.echo:
+-- await_echo), the pairing pairs by them (vw3.pairing's same_echo: a request keeps them, f.echoed, as its
+-- byte table is gone when its answer comes).
+local ECHO_CODES = DATA.pairing.echo
+local function echoed(f)
+  local count = ECHO_CODES[f.fn]
+  if count == nil then return nil end
+  if count > f.data_len then count = f.data_len end
+  return string_of(f.b, f.data_at, count)
+end
+
+-- Do the bytes from b[i] (up to b[n - 1]) repeat the echo awaited (echo.bytes), as far as they have come?
 local function echo_at(echo, b, i, n)
-  for k = 1, #echo do
+  local bytes = echo.bytes
+  for k = 1, #bytes do
     local at = i + 1 + k
     if at >= n then return true end
-    if b[at] ~= echo[k] then return false end
+    if b[at] ~= bytes:byte(k) then return false end
   end
   return true
 end
@@ -4992,22 +5016,14 @@ local function interpretations(st, slave, code, b, i, n)
   return AS_REQUEST[code] or NO_INTERPRETATION
 end
 
--- What the answer awaited after `frame` must repeat of it (st.echo: DATA.pairing.echo's data bytes, an
--- FC8 sub-function), kept wherever a frame of a code with an echo (ECHO_CODES) sets the expectation
--- (vw3.stream's expect_after, the quick lanes), with the expectation it was kept for: a later request of
--- another code, which does not call this, leaves it aside (echo.expect: awaited).
+-- What the answer awaited after `frame` must repeat of it (st.echo: its echoed bytes, an FC8 sub-function),
+-- kept wherever a frame of a code with an echo (ECHO_CODES) sets the expectation (vw3.stream's expect_after,
+-- the quick lanes), with the expectation it was kept for: a later request of another code, which does not
+-- call this, leaves it aside (echo.expect: awaited).
 -- A frame too short for it keeps what it holds (rules.py echoed): the answer is weighed by those bytes.
-local ECHO_CODES = DATA.pairing.echo
 local function await_echo(st, frame)
-  if st.expect == nil then
-    st.echo = nil
-    return
-  end
-  local count = ECHO_CODES[frame.fn]
-  if count > frame.data_len then count = frame.data_len end
-  local echo, b, at = { expect = st.expect }, frame.b, frame.data_at
-  for k = 1, count do echo[k] = b[at + k - 1] end
-  st.echo = echo
+  st.echo = nil
+  if st.expect ~= nil then st.echo = { expect = st.expect, bytes = echoed(frame) } end
 end
 
 -- Can a frame start with this function code (any address before it: rules.py _POSSIBLE_START)?
@@ -5017,8 +5033,8 @@ end
 M.ECHO_CODES, M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE = ECHO_CODES, EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE
 M.MIN_ADU, M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = MIN_ADU, NEED, NOISE, NOISE_ITEM_MAX, NONE
 M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE, M.await_echo = NO_INTERPRETATION, REQUEST, RESPONSE, await_echo
-M.awaited, M.bounded_kind, M.counted, M.data_bytes = awaited, bounded_kind, counted, data_bytes
-M.interpretations, M.possible_start = interpretations, possible_start
+M.awaited, M.bounded_kind, M.counted, M.data_bytes, M.echoed = awaited, bounded_kind, counted, data_bytes, echoed
+M.interpretations, M.possible_start, M.string_of = interpretations, possible_start, string_of
 end
 
 -- ---- vw3.stream: lua/src/stream.lua ----
@@ -5525,7 +5541,7 @@ local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, F
 local function ends_record(s, b, i, n)
   local slave, code = b[i], b[i + 1]
   local list = interpretations(s, slave, code, b, i, n)
-  local holds = (s.echo ~= nil and s.expect == slave * 256 + code and i + 1 + #s.echo >= n) and n + 1 or math.huge
+  local holds = (s.echo ~= nil and s.expect == slave * 256 + code and i + 1 + #s.echo.bytes >= n) and n + 1 or math.huge
   for index = 1, #list do
     local length, is_scan, walk, wanted = list[index][2](b, i, n)
     if length == NEED then holds = math.min(holds, n + 1) end
@@ -6588,7 +6604,7 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, EXCEPTION, MAX_SLAVE, REQUEST, answered, concat = DATA, EXCEPTION, MAX_SLAVE, REQUEST, answered, concat
 local data_bytes, floor, format, ipairs, math, pairs = data_bytes, floor, format, ipairs, math, pairs
-local string, table, tostring = string, table, tostring
+local string, string_of, table, tostring = string, string_of, table, tostring
 local RULES = DATA.rules
 
 -- ---------------------------------------------------------------------------------------------------
@@ -6637,16 +6653,6 @@ local function adder(key)
   end
 end
 local warn, note = adder("warnings"), adder("notes")
-
--- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
-local function string_of(b, first, count)
-  if count <= 200 then return string.char(table.unpack(b, first, first + count - 1)) end
-  local parts = {}
-  for k = 0, count - 1, 200 do -- (200 at a time: unpack puts them on the stack, string.char's arguments)
-    parts[#parts + 1] = string.char(table.unpack(b, first + k, first + math.min(k + 200, count) - 1))
-  end
-  return concat(parts)
-end
 
 -- b[first..last] as text where every byte is printable ASCII (as vw3-decode shows a device's data), else nil.
 local function printable_ascii(b, first, last)
@@ -6914,8 +6920,8 @@ M.CONFIRMED, M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS = CONFIRMED, DIAGNOSTICS, 
 M.LIFT_OF, M.LIMITS, M.NOT_BROADCAST, M.bit_at = LIFT_OF, LIMITS, NOT_BROADCAST, bit_at
 M.decode_frame, M.exception_name, M.fill, M.function_name = decode_frame, exception_name, fill, function_name
 M.hex_of, M.note, M.printable_ascii, M.register_at = hex_of, note, printable_ascii, register_at
-M.release_run, M.say, M.string_of, M.trusted_request, M.u16 = release_run, say, string_of, trusted_request, u16
-M.verified, M.warn = verified, warn
+M.release_run, M.say, M.trusted_request, M.u16, M.verified = release_run, say, trusted_request, u16, verified
+M.warn = warn
 end
 
 -- ---- vw3.pairing: lua/src/pairing.lua ----
@@ -6926,8 +6932,8 @@ package.preload["vw3.pairing"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer
-local format, next, note, part_reason, release_run, say = format, next, note, part_reason, release_run, say
-local string_of, table, warn = string_of, table, warn
+local echoed, format, next, note, part_reason, release_run = echoed, format, next, note, part_reason, release_run
+local say, string_of, table, warn = say, string_of, table, warn
 local PLAIN = DATA.plain_texts -- (the catalogue's texts without parameters: unmatched, never_answered, ...)
 local ECHO = DATA.pairing.echo
 -- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once by NS
@@ -7064,16 +7070,6 @@ local function unanswered(st, pending)
   pending.unanswered, pending.fields = not pending.answerless, nil
   release_run(pending.registers)
   st.pending = nil
-end
-
--- What a frame holds of the bytes the spec has an answer echo (DATA.pairing.echo: FC8's sub-function), as a
--- string (fewer bytes where the frame ends first); nil: none. (A request keeps it: its byte table is gone when
--- its answer comes.)
-local function echoed(f)
-  local count = ECHO[f.fn]
-  if count == nil then return nil end
-  if count > f.data_len then count = f.data_len end
-  return string_of(f.b, f.data_at, count)
 end
 
 -- Do the two agree on the echo over the bytes of it both hold (pairing.py _same_echo)? A frame too short for

@@ -50,16 +50,6 @@ local function adder(key)
 end
 local warn, note = adder("warnings"), adder("notes")
 
--- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
-local function string_of(b, first, count)
-  if count <= 200 then return string.char(table.unpack(b, first, first + count - 1)) end
-  local parts = {}
-  for k = 0, count - 1, 200 do -- (200 at a time: unpack puts them on the stack, string.char's arguments)
-    parts[#parts + 1] = string.char(table.unpack(b, first + k, first + math.min(k + 200, count) - 1))
-  end
-  return concat(parts)
-end
-
 -- b[first..last] as text where every byte is printable ASCII (as vw3-decode shows a device's data), else nil.
 local function printable_ascii(b, first, last)
   local text = string_of(b, first, last - first + 1)

@@ -105,12 +105,35 @@ for code, rules in pairs(DATA.protocol.rules) do
 end
 local NO_INTERPRETATION = {}
 
--- Do the bytes from b[i] (up to b[n - 1]) repeat the echo awaited, as far as they have come?
+-- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
+local function string_of(b, first, count)
+  if count <= 200 then return string.char(table.unpack(b, first, first + count - 1)) end
+  local parts = {}
+  for k = 0, count - 1, 200 do -- (200 at a time: unpack puts them on the stack, string.char's arguments)
+    parts[#parts + 1] = string.char(table.unpack(b, first + k, first + math.min(k + 200, count) - 1))
+  end
+  return concat(parts)
+end
+
+-- What a frame holds of the bytes the spec has an answer echo (DATA.pairing.echo: FC8's sub-function), as a
+-- string (fewer bytes where the frame ends first); nil: none. The framer awaits them in the answer (st.echo:
+-- await_echo), the pairing pairs by them (vw3.pairing's same_echo: a request keeps them, f.echoed, as its
+-- byte table is gone when its answer comes).
+local ECHO_CODES = DATA.pairing.echo
+local function echoed(f)
+  local count = ECHO_CODES[f.fn]
+  if count == nil then return nil end
+  if count > f.data_len then count = f.data_len end
+  return string_of(f.b, f.data_at, count)
+end
+
+-- Do the bytes from b[i] (up to b[n - 1]) repeat the echo awaited (echo.bytes), as far as they have come?
 local function echo_at(echo, b, i, n)
-  for k = 1, #echo do
+  local bytes = echo.bytes
+  for k = 1, #bytes do
     local at = i + 1 + k
     if at >= n then return true end
-    if b[at] ~= echo[k] then return false end
+    if b[at] ~= bytes:byte(k) then return false end
   end
   return true
 end
@@ -145,22 +168,14 @@ local function interpretations(st, slave, code, b, i, n)
   return AS_REQUEST[code] or NO_INTERPRETATION
 end
 
--- What the answer awaited after `frame` must repeat of it (st.echo: DATA.pairing.echo's data bytes, an
--- FC8 sub-function), kept wherever a frame of a code with an echo (ECHO_CODES) sets the expectation
--- (vw3.stream's expect_after, the quick lanes), with the expectation it was kept for: a later request of
--- another code, which does not call this, leaves it aside (echo.expect: awaited).
+-- What the answer awaited after `frame` must repeat of it (st.echo: its echoed bytes, an FC8 sub-function),
+-- kept wherever a frame of a code with an echo (ECHO_CODES) sets the expectation (vw3.stream's expect_after,
+-- the quick lanes), with the expectation it was kept for: a later request of another code, which does not
+-- call this, leaves it aside (echo.expect: awaited).
 -- A frame too short for it keeps what it holds (rules.py echoed): the answer is weighed by those bytes.
-local ECHO_CODES = DATA.pairing.echo
 local function await_echo(st, frame)
-  if st.expect == nil then
-    st.echo = nil
-    return
-  end
-  local count = ECHO_CODES[frame.fn]
-  if count > frame.data_len then count = frame.data_len end
-  local echo, b, at = { expect = st.expect }, frame.b, frame.data_at
-  for k = 1, count do echo[k] = b[at + k - 1] end
-  st.echo = echo
+  st.echo = nil
+  if st.expect ~= nil then st.echo = { expect = st.expect, bytes = echoed(frame) } end
 end
 
 -- Can a frame start with this function code (any address before it: rules.py _POSSIBLE_START)?

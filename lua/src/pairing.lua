@@ -139,16 +139,6 @@ local function unanswered(st, pending)
   st.pending = nil
 end
 
--- What a frame holds of the bytes the spec has an answer echo (DATA.pairing.echo: FC8's sub-function), as a
--- string (fewer bytes where the frame ends first); nil: none. (A request keeps it: its byte table is gone when
--- its answer comes.)
-local function echoed(f)
-  local count = ECHO[f.fn]
-  if count == nil then return nil end
-  if count > f.data_len then count = f.data_len end
-  return string_of(f.b, f.data_at, count)
-end
-
 -- Do the two agree on the echo over the bytes of it both hold (pairing.py _same_echo)? A frame too short for
 -- it (malformed) pairs by its slave and function, as every malformed frame does.
 local function same_echo(request, f)

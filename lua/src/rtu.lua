@@ -12,7 +12,7 @@ local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, F
 local function ends_record(s, b, i, n)
   local slave, code = b[i], b[i + 1]
   local list = interpretations(s, slave, code, b, i, n)
-  local holds = (s.echo ~= nil and s.expect == slave * 256 + code and i + 1 + #s.echo >= n) and n + 1 or math.huge
+  local holds = (s.echo ~= nil and s.expect == slave * 256 + code and i + 1 + #s.echo.bytes >= n) and n + 1 or math.huge
   for index = 1, #list do
     local length, is_scan, walk, wanted = list[index][2](b, i, n)
     if length == NEED then holds = math.min(holds, n + 1) end
