@@ -23,7 +23,7 @@ from collections.abc import Callable
 from typing import BinaryIO, TextIO
 
 from dissector.app.live import StopFlag, interface_description, live_framer
-from dissector.app.live_capture import CaptureFiles, CaptureThread, Handoff, silence_threshold
+from dissector.app.live_capture import CaptureFiles, CaptureThread, Handoff, long_silence, silence_threshold
 from dissector.errors import ExitStatus, LiveError
 from dissector.framing.timing import LineTiming
 from dissector.render.capturefile import STDOUT, CaptureOutput
@@ -175,7 +175,8 @@ def capture(args: argparse.Namespace, port_name: str, err: TextIO, prog: str) ->
             output = FifoOutput(stream, args.fifo, (settings.port, description(args, settings)))
             rtu = None if mode == "ascii" else LineTiming(settings.baud)  # (CaptureFiles._records)
             thread = CaptureThread(port, live_framer(mode, settings.baud), CaptureFiles(output, None, rtu),
-                                   Handoff(limit=0), silence_threshold(settings.baud), port_name=settings.port,
+                                   Handoff(limit=0), silence_threshold(settings.baud),
+                                   silence_long=long_silence(settings.baud), port_name=settings.port,
                                    closing_record=False)
             thread.start()
             while not thread.done.wait(WAIT):

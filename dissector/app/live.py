@@ -41,6 +41,7 @@ from dissector.app.live_capture import (
     HANDOFF_READS_LIMIT,
     Handoff,
     Tape,
+    long_silence,
     silence_threshold,
 )
 from dissector.app.detect import AsciiHeard
@@ -378,7 +379,7 @@ def _live_path(compiled: str, dissector: Dissector, annotate: Annotator | None, 
     from dissector.accel.livepath import LivePath
 
     return LivePath(dissector, annotate, clock, shown_.items, shown_.lines, getattr(args, "timeout", None),
-                    silence_threshold(args.baud), IDLE_FLUSH_LONG, compiled == "summary",
+                    silence_threshold(args.baud), long_silence(args.baud), compiled == "summary",
                     getattr(args, "count", None), live_char_time(args))
 
 
@@ -475,7 +476,7 @@ def run_live(
     handoff = Handoff(HANDOFF_READS_LIMIT) if compiled is not None else Handoff()
     capture = CaptureThread(
         port, framer, files, handoff, silence_threshold(args.baud), args.duration, args.count,  # type: ignore[arg-type]
-        port_name=args.live, char_time=live_char_time(args),
+        silence_long=long_silence(args.baud), port_name=args.live, char_time=live_char_time(args),
     )
     started = time.monotonic()
     sink: Sink = NullSink()

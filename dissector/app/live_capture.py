@@ -60,9 +60,15 @@ HANDOFF_READS_LIMIT = 1_000_000
 
 
 def silence_threshold(baud: int) -> float:
-    """max(t3.5, IDLE_FLUSH); t3.5 is fixed at 1.75 ms above 19200 baud (Serial Line Guide)."""
-    t35 = 3.5 * 11 / baud if baud <= 19200 else 0.00175
-    return max(t35, IDLE_FLUSH)
+    """max(t3.5, IDLE_FLUSH); t3.5 is the line's (timing.LineTiming: fixed at 1.75 ms above 19200 baud)."""
+    return max(LineTiming(baud).t35, IDLE_FLUSH)
+
+
+def long_silence(baud: int) -> float:
+    """max(t3.5, IDLE_FLUSH_LONG): the silence after which live closes a partial frame. Below about 154 baud
+    t3.5 is the longer (770 ms at 50 baud), and a shorter silence does not cut a frame in the decode of the
+    -w file (timing.silence_before), so live waits as long."""
+    return max(LineTiming(baud).t35, IDLE_FLUSH_LONG)
 
 
 def port_char_time(port: serial.SerialBase) -> float:
