@@ -35,11 +35,12 @@ def _rtac(micros: int, event: int, data: bytes) -> bytes:
     return struct.pack(">IIBBH", seconds, fraction, event, 0, 0) + data
 
 
-def _pcap(path: Path) -> Path:
+def _pcap(path: Path, stored: list[int] | None = None) -> Path:
+    """`stored`: each record's time (us after T0) where it is not its header's."""
     out = struct.pack("<IHHiIII", 0xA1B2C3D4, 2, 4, 0, 0, 65535, 250)
-    for micros, event, data in RECORDS:
+    for (micros, event, data), at in zip(RECORDS, stored or [micros for micros, _event, _data in RECORDS]):
         payload = _rtac(micros, event, data)
-        seconds, fraction = divmod(T0 * 1_000_000 + micros, 1_000_000)
+        seconds, fraction = divmod(T0 * 1_000_000 + at, 1_000_000)
         out += struct.pack("<IIII", seconds, fraction, len(payload), len(payload)) + payload
     path.write_bytes(out)
     return path
@@ -141,3 +142,16 @@ def test_the_engine_writes_them(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
     reference, none = decode(["-t", time_format, str(path)], monkeypatch, pure=True)
     assert (fast, none) == (reference, 0)
     assert engine_lines == 4
+
+
+@BOTH
+def test_the_header_clock_where_the_record_clock_differs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                         pure: bool) -> None:
+    """Records stored late and unevenly (their times 2 s on, the first event's 2.4 s): the columns count the RTAC
+    header's times, as -t a and the response times show them, where tshark's frame times are the records'."""
+    use_engine(monkeypatch, pure)
+    path = _pcap(tmp_path / "late.pcap", [2_400_000, 2_001_000, 2_003_000, 2_100_000, 2_500_000, 2_520_000])
+    assert _column(path, "-t", "r") == ["0.001000", "0.009000", "0.500000", "0.520000"]
+    assert _column(path, "-t", "d") == ["0.001000", "0.006000", "0.491000", "0.020000"]
+    out = run_cli(["-t", "ud", str(path)])[1]
+    assert out.splitlines()[0].startswith("     1 2026-01-01 00:00:00.001000  12 request")  # (the header's)
