@@ -56,7 +56,7 @@ class TimedPath:
         # its first reference; -t d from the packet before each item's (self.befores); -t dd as any capture's.
         self.packets = clock.packets
         self.befores: array | None = None
-        self.marked: bool | None = None  # the bus's chunks are marked in `packets` (a serial RTAC bus's are not)
+        self.marked: bool | None = None  # the bus's chunks are marked in `packets`
         mode = CLOCKS[clock.format]
         if self.packets is not None and clock.format == "d":
             mode, self.befores = PACKET_DELTAS, array("q")

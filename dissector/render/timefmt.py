@@ -2,7 +2,7 @@
 
 Reference points come from the capture, never from what the display filter lets through: relative
 time (`r`) counts from the first item of the input and `d` from the item captured just before, as
-tshark does (a network or several-interface capture's: from its packets, Clock.packets); only `dd`
+tshark does (a network, RTAC or several-interface capture's: from its packets, Clock.packets); only `dd`
 (delta displayed) looks at what was shown.
 """
 from __future__ import annotations
@@ -18,11 +18,11 @@ from dissector.render.pcapwriter import NANOS, finer_than_micros
 
 # -t value -> what tshark calls it (for --help and error messages)
 TIME_FORMATS: dict[str, str] = {
-    "r": "relative to the first item (a network or several-interface capture: its first packet)",
+    "r": "relative to the first item (a network, RTAC or several-interface capture: its first packet)",
     "a": "local time of day",
     "ad": "local date and time",
     "adoy": "local year/day of the year and time",
-    "d": "delta from the previous item captured (a network or several-interface capture: the packet before)",
+    "d": "delta from the previous item captured (a network, RTAC or several-interface capture: the packet before)",
     "dd": "delta from the previous item displayed",
     "e": "seconds since the epoch",
     "u": "UTC time of day",
@@ -119,11 +119,11 @@ class Clock:
     # their precision (column_digits), its times cut to it as tshark's; the others' are rounded to us.
     units: int | None = None
     first: float | None = None  # time of the first timed item captured
-    # A network capture's, or a serial bus's of a pcapng with packets on several interfaces (sources/ethernet.py
-    # PacketTimes): r counts from its first packet and d from the packet before the item's first, any packet, as
-    # tshark's frame.time_relative and frame.time_delta (a packet with no bus bytes, another connection's or
-    # interface's, is no item but a packet tshark shows); dd from the item shown before, as tshark -Y vw3's
-    # time_delta_displayed.
+    # A network capture's, an RTAC serial capture's (its header times: sources/common.py rtac_mark), or a serial
+    # bus's of a pcapng with packets on several interfaces (sources/ethernet.py PacketTimes): r counts from its
+    # first packet and d from the packet before the item's first, any packet, as tshark's frame.time_relative and
+    # frame.time_delta (a packet with no bus bytes, another connection's or interface's, an RTAC event record, is
+    # no item but a packet tshark shows); dd from the item shown before, as tshark -Y vw3's time_delta_displayed.
     packets: Any = None
     _previous_captured: float | None = None
     _previous_shown: float | None = None
@@ -214,8 +214,8 @@ SINCE = {Stamp: " s since the first item)", FirstPacket: " s since the first pac
 
 
 def network(packets: Any) -> Any:
-    """The PacketTimes the time column counts from, once its bus has a packet marked (a network capture's, a
-    serial bus's of a several-interface pcapng: sources/pcapng.py; none else)."""
+    """The PacketTimes the time column counts from, once its bus has a packet marked (a network capture's, an RTAC
+    serial capture's, a serial bus's of a several-interface pcapng: sources/pcapng.py; none else)."""
     return packets if packets is not None and packets.offsets else None
 
 

@@ -12,7 +12,7 @@ from typing import BinaryIO
 
 from dissector.errors import SourceError
 from dissector.model import Chunk, Stamp
-from dissector.sources.ethernet import LINK_NAMES, NETWORK_LINKTYPES, Transport  # (RTU over TCP/UDP)
+from dissector.sources.ethernet import LINK_NAMES, NETWORK_LINKTYPES, PacketTimes, Transport  # (RTU over TCP/UDP)
 
 LINKTYPE_USER0 = 147
 LINKTYPE_RTAC_SERIAL = 250
@@ -193,6 +193,16 @@ def linktype_error(name: str, linktype: int, where: str = "") -> SourceError:
 def check_linktype(name: str, linktype: int, where: str = "") -> None:
     if linktype not in (LINKTYPE_USER0, LINKTYPE_RTAC_SERIAL) and linktype not in NETWORK_LINKTYPES:
         raise linktype_error(name, linktype, where)
+
+
+def rtac_mark(times: PacketTimes | None, time: Stamp) -> int | None:
+    """An RTAC record read at its header's `time`, a packet tshark shows (its serial bytes or none: an event) marked
+    in `times` (sources/ethernet.py PacketTimes: -t r counts from the capture's first packet, -t d from the one
+    before): the time of the packet before it. The header's time, as -t a/e and the response times take it, not the
+    record's, tshark's frame time: they agree on a tap's captures; where they differ, a column counting from one
+    clock what another output shows by the other would mix them (a record stored late showed a delta its arrival
+    time contradicts)."""
+    return None if times is None else times.packet(time.ns)
 
 
 def rtac_header(head: bytes, record: int, log: WarningLog) -> tuple[Stamp | None, int] | None:

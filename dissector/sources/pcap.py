@@ -17,6 +17,7 @@ from dissector.sources.ethernet import NETWORK_LINKTYPES, PacketTimes, RtuPorts,
 from dissector.sources.common import (
     Where,
     LINKTYPE_RTAC_SERIAL,
+    rtac_mark,
     Input,
     SourceError,
     WarningLog,
@@ -76,6 +77,8 @@ class PcapRecords:
         self.order, self.units, self.linktype, self.snaplen = "<", 1_000_000, 0, 0
         self.extra = 0  # record header bytes after the standard 16 (modified pcap)
         self.recorded_until: Stamp | None = None
+        self.rtac_times: PacketTimes | None = None  # an RTAC link's packet marks (_stamped)
+        self._packet: int | None = None  # the time of the packet before the RTAC record read (ns)
         self._header()  # (at once: its time units set the time column's decimals before any record)
         seekable = getattr(inp.stream, "seekable", None)  # (not a compressed file's: passed over unread)
         if self.transport is not None and span is not None and seekable and seekable():  # (its first record)
@@ -95,7 +98,7 @@ class PcapRecords:
     @property
     def packet_times(self) -> PacketTimes | None:
         """A network link's packet times (sources/ethernet.py), the time column's references."""
-        return None if self.transport is None else self.transport.times
+        return self.rtac_times if self.transport is None else self.transport.times
 
     @property
     def time_units(self) -> int:
@@ -122,6 +125,8 @@ class PcapRecords:
         check_linktype(inp.name, self.linktype)
         if self.linktype in NETWORK_LINKTYPES:
             self.transport = Transport(inp.name, self.ports, self.only, span=self.span)
+        if self.linktype == LINKTYPE_RTAC_SERIAL:
+            self.rtac_times = PacketTimes()
         # (read ahead from a file alone, not a live feed: wiretap reads a variant's file only then, "that type
         # of pcap file can't be read from a pipe")
         if self.units == 1_000_000 and rereadable(inp):
@@ -220,12 +225,20 @@ class PcapRecords:
                 # (-w's untimed record: see EpochRecord; an RTAC record carries its own time)
                 chunks = record_chunks(inp, captured, None, self.linktype, self.record, log, self.chunk_size,
                                        original=original)
-            yield from chunks
+            if self.rtac_times is None:
+                yield from chunks
+                continue
+            self._packet = None  # (_stamped sets it once the header is read: none when it is cut or corrupt)
+            for chunk in chunks:
+                self.rtac_times.taken(len(chunk.data), self._packet)
+                yield chunk
 
 
     def _stamped(self, time: Stamp) -> None:
-        """An RTAC record's own time (its header's), data or not: the tap was recording then."""
+        """An RTAC record's own time (its header's), data or not: the tap was recording then, and a packet tshark
+        shows (common.py rtac_mark)."""
         self.recorded_until = time
+        self._packet = rtac_mark(self.rtac_times, time)
 
 
 CORRUPT_STAMPS = "corrupt time stamps"

@@ -24,6 +24,7 @@ from dissector.sources.common import (
     Where,
     LINKTYPE_NAMES,
     LINKTYPE_RTAC_SERIAL,
+    rtac_mark,
     LINKTYPE_USER0,
     Input,
     NotedChunk,
@@ -114,6 +115,7 @@ class _Reader:
         self.transport = Transport(inp.name, ports, connection, span=span)
         self.networked = False  # a network interface's packet was read
         self.marks = False  # a serial interface's packets mark their times (read_pcapng `shared`)
+        self.packet: int | None = None  # the time of the packet before the one read (ns), once marked
         # The warnings that number a record: `where` (the bus's title, `file: if_name`) first when the file is
         # read once per interface, each numbering its own records ("record 2" alone sent the reader to the
         # first bus's, or to tshark's frame 2).
@@ -410,15 +412,15 @@ class _Reader:
         rtac = self._stamped if interface.linktype == LINKTYPE_RTAC_SERIAL else None
         network = interface.linktype in NETWORK_LINKTYPES
         self.networked = self.networked or network
-        # (an RTAC record's time is in its bytes, not tshark's frame time: its bus counts from its items)
+        # (an RTAC record's packet is marked at its header's time once read, _stamped: common.py rtac_mark)
         mark = self.marks and interface.linktype == LINKTYPE_USER0
-        packet = self.transport.times.packet(getattr(time, "ns", None)) if mark else None
+        self.packet = self.transport.times.packet(getattr(time, "ns", None)) if mark else None
         for chunk in record_chunks(
             self.inp, captured, time, interface.linktype, self.record, self.record_log, self.chunk_size, rtac,
             original, self.transport if network else None,
         ):
-            if mark:
-                self.transport.times.taken(len(chunk.data), packet)
+            if mark or rtac:
+                self.transport.times.taken(len(chunk.data), self.packet)
             if network and time is not None:  # (the plugin sees it: it was recording then)
                 self.last_time = time
             if last is not None:
@@ -449,8 +451,10 @@ class _Reader:
             raise _Ended()
 
     def _stamped(self, time: Stamp) -> None:
-        """An RTAC record's own time (its header's), data or not: the tap was recording then."""
+        """An RTAC record's own time (its header's), data or not: the tap was recording then, and a packet tshark
+        shows (common.py rtac_mark)."""
         self.last_time = time
+        self.packet = rtac_mark(self.transport.times, time)
 
     def _comments(self, options: bytes) -> tuple[str, ...]:
         """The packet's comments (opt_comment), but those vw3-decode wrote of its own decode."""
@@ -554,7 +558,15 @@ class PcapngChunks:
         interface's bus (`only`); a serial bus's of a file with packets on several interfaces (read_pcapng)."""
         reader = self._reader
         networked = reader.transport.ports != RtuPorts() and reader.only is None
-        return reader.transport.times if networked or reader.marks else None
+        return reader.transport.times if networked or reader.marks or self._rtac() else None
+
+    def _rtac(self) -> bool:
+        """The bus read is an RTAC interface's (its packets marked: common.py rtac_mark), as far as can be told
+        before its first packet: else a file's first serial interface, read ahead (first_interface_of)."""
+        reader = self._reader
+        serials = [interface for interface in reader.interfaces if serial(interface.linktype)]
+        first = serials[0] if serials else first_interface_of(reader.inp.name)
+        return getattr(first, "linktype", None) == LINKTYPE_RTAC_SERIAL
 
     @property
     def time_units(self) -> int | None:
