@@ -5702,7 +5702,7 @@ end
 local function followed(s, b, stop, n, final, at_end)
   local j = stop
   while true do
-    if final and j == n then return at_end ~= false or s.cut_by_silence end -- (a silence at the end: a boundary)
+    if final and j == n then return at_end ~= false or s.cut_by_silence == true end -- (a silence at the end: a boundary)
     if boundary_at(s, j) then return true end
     local found = valid_frame_at(s, b, j, n, final)
     if found ~= false then return found end

@@ -24,8 +24,8 @@ from dissector.render.pcapwriter import MICROS, NANOS, finer_than_micros
 from dissector.sources.ethernet import RtuPorts
 from dissector.sources.interfaces import PacketInterface, packet_interfaces
 from dissector.sources.pcap import MAGICS, is_pcap
-from dissector.sources.pcapng import IDB, SHB, _interface, is_pcapng
-from dissector.sources.pcapng import Interface as RecordedInterface
+from dissector.sources.pcapng_blocks import IDB, SHB, _interface, is_pcapng
+from dissector.sources.pcapng_blocks import Interface as RecordedInterface
 from dissector.sources.reader import NOTATIONS, SourceError, open_interface, open_source
 from dissector.sources.trail import Piece, RecordTrail, item_comments, observed
 

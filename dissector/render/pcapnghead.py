@@ -5,7 +5,7 @@ from __future__ import annotations
 import struct
 from collections.abc import Iterator
 
-from dissector.sources.pcapng import serial
+from dissector.sources.pcapng_blocks import serial
 
 Interface = tuple[str | None, str | None]  # pcapng if_name, if_description
 

@@ -20,22 +20,11 @@ import stat
 import struct
 from dataclasses import dataclass, replace
 
-from dissector.sources.common import Input, SourceError, WarningLog
+from dissector.sources.common import LINKTYPE_USER0, Input, SourceError, WarningLog
 from dissector.sources.ethernet import NETWORK_LINKTYPES, Connection, RtuPorts, Span
 from dissector.sources.pcap import PcapRecords, is_pcap, read_pcap
-from dissector.sources.pcapng import (
-    EPB,
-    IDB,
-    MAX_HEADER_BLOCK,
-    OPB,
-    SHB_MAGIC,
-    SPB,
-    Interface,
-    LINKTYPE_USER0,
-    _interface,
-    read_pcapng,
-    serial,
-)
+from dissector.sources.pcapng import read_pcapng
+from dissector.sources.pcapng_blocks import EPB, IDB, MAX_HEADER_BLOCK, OPB, SHB_MAGIC, SPB, Interface, _interface, serial
 
 SCAN_BUFFER = 1 << 20  # the walk's reads
 
