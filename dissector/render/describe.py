@@ -163,7 +163,8 @@ TEXT_FORMS: dict[str, list[str | tuple[str | int, ...]]] = {
     # the address as sent, even PLC style
     "mask": [("dec", "address"), " AND 0x", ("hex", "and_mask", 4), " OR 0x", ("hex", "or_mask", 4)],
     "pointer": ["pointer ", ("dec", "address")],
-    "read_write": ["read ", ("plain_span",), ", write ", ("values",)],  # PLC style: as its answer shows it
+    # PLC style: as its answer shows it; `write 5 (0)` writing none, as FC16's `5 (0)`
+    "read_write": ["read ", ("plain_span",), ", write ", ("write",)],
     # `10 values: 0 100 … (+2)`, `0 values` (the step writes the colon before values it shows)
     "fifo": [("dec", "fifo_count"), " values", ("fifo", "fifo_count", "values")],
     "python": [("none",)],
@@ -233,10 +234,16 @@ def _plain_span(frame: Frame) -> str:
     return span_text(frame) if frame.span_label is not None else plain_span(frame.start, frame.quantity)
 
 
+def _write(frame: Frame) -> str:
+    """FC23's write part: its values, or where none are sent its window as sent (`5 (0)`), never nothing."""
+    fields = frame.fields
+    return values_text(frame) or plain_span(fields.write_start, fields.write_quantity)
+
+
 # What each step of TEXT_FORMS writes (the C engine's STEP_*): of the frame, or of the field it names.
 _OF_FRAME: dict[str, Callable[[Frame], str]] = {
     "unspace": lambda frame: "", "span": span_text, "label": span_text, "plain_span": _plain_span,
-    "bits": bits_text, "values": values_text,
+    "bits": bits_text, "values": values_text, "write": _write,
 }
 _OF_FIELD: dict[str, Callable[[Frame, Any], str]] = {
     "coil": _coil, "single": _single, "dec": lambda frame, value: str(value),
