@@ -327,7 +327,7 @@ static const Lift response_lift[HANDLED] = {
     {0, 0, 0, 0, {4, 0}, {2, 0}, {8, -1}, {1, 0}, 0, 2, 2, 2, 1, 4, 2, 2, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, /* 24 */
     {0, 0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, /* 43 */
 };
-enum { STEP_END, STEP_NONE, STEP_TEXT, STEP_UNSPACE, STEP_SPAN, STEP_PLAIN_SPAN, STEP_LABEL, STEP_BITS, STEP_VALUES, STEP_COIL, STEP_SINGLE, STEP_DEC, STEP_HEX, STEP_SUBFUNCTION, STEP_DATA, STEP_FIFO };
+enum { STEP_END, STEP_NONE, STEP_TEXT, STEP_UNSPACE, STEP_SPAN, STEP_PLAIN_SPAN, STEP_LABEL, STEP_BITS, STEP_VALUES, STEP_WRITE, STEP_COIL, STEP_SINGLE, STEP_DEC, STEP_HEX, STEP_SUBFUNCTION, STEP_DATA, STEP_FIFO };
 /* The Info column's forms (codegen/c_rules.py TEXT_FORMS, describe.py's describers): the steps of each,
  * up to STEP_END. A step writes `text` (STEP_TEXT, `length` bytes) or a part of the frame: its window,
  * bits, registers, or a printed field (`field`: its index in InfoForm.at, -1 none) as a number (`number`:
@@ -349,7 +349,7 @@ static const Step form_steps[][MAX_STEPS] = {
     {{STEP_HEX, 0, 2, NULL, 0}, {STEP_TEXT, -1, 0, "h ", 2}, {STEP_SUBFUNCTION, 0, 0, NULL, 0}, {STEP_DATA, 1, 0, NULL, 0}}, /* diagnostics */
     {{STEP_DEC, 0, 0, NULL, 0}, {STEP_TEXT, -1, 0, " AND 0x", 7}, {STEP_HEX, 1, 4, NULL, 0}, {STEP_TEXT, -1, 0, " OR 0x", 6}, {STEP_HEX, 2, 4, NULL, 0}}, /* mask */
     {{STEP_TEXT, -1, 0, "pointer ", 8}, {STEP_DEC, 0, 0, NULL, 0}}, /* pointer */
-    {{STEP_TEXT, -1, 0, "read ", 5}, {STEP_PLAIN_SPAN, -1, 0, NULL, 0}, {STEP_TEXT, -1, 0, ", write ", 8}, {STEP_VALUES, -1, 0, NULL, 0}}, /* read_write */
+    {{STEP_TEXT, -1, 0, "read ", 5}, {STEP_PLAIN_SPAN, -1, 0, NULL, 0}, {STEP_TEXT, -1, 0, ", write ", 8}, {STEP_WRITE, 0, 1, NULL, 0}}, /* read_write */
     {{STEP_DEC, 0, 0, NULL, 0}, {STEP_TEXT, -1, 0, " values", 7}, {STEP_FIFO, 0, 1, NULL, 0}}, /* fifo */
     {{STEP_NONE, -1, 0, NULL, 0}}, /* python */
 };
@@ -381,7 +381,7 @@ static const Rules rules[HANDLED] = {
     {0, 0, 0, 1, {{form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}}}, /* 20 */
     {0, 0, 0, 1, {{form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}}}, /* 21 */
     {0, 3, 0, 0, {{form_steps[FORM_MASK], {2, 4, 6}, {2, 2, 2}}, {form_steps[FORM_MASK], {2, 4, 6}, {2, 2, 2}}}}, /* 22 */
-    {0, 2, 1, 0, {{form_steps[FORM_READ_WRITE], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_VALUES], {0, 0, 0}, {0, 0, 0}}}}, /* 23 */
+    {0, 2, 1, 0, {{form_steps[FORM_READ_WRITE], {6, 8, 0}, {2, 2, 0}}, {form_steps[FORM_VALUES], {0, 0, 0}, {0, 0, 0}}}}, /* 23 */
     {0, 0, 0, 0, {{form_steps[FORM_POINTER], {2, 0, 0}, {2, 0, 0}}, {form_steps[FORM_FIFO], {4, 6, 0}, {2, 0, 0}}}}, /* 24 */
     {0, 0, 0, 1, {{form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}}}, /* 43 */
 };

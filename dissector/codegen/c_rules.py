@@ -36,7 +36,7 @@ ADU_HEAD = 2  # slave and function code before the grammar's data
 # are read at each code's offsets (Rules.info).
 TEXT_FORMS = describe.TEXT_FORMS
 FORMS = tuple(TEXT_FORMS)
-STEPS = ("end", "none", "text", "unspace", "span", "plain_span", "label", "bits", "values", "coil", "single", "dec",
+STEPS = ("end", "none", "text", "unspace", "span", "plain_span", "label", "bits", "values", "write", "coil", "single", "dec",
          "hex", "subfunction", "data", "fifo")
 MAX_STEPS = max(len(steps) for steps in TEXT_FORMS.values()) + 1  # and its STEP_END
 # The kinds of frame the engine shows by their numbers (KIND_*): those render/bustiming.py gives the engine's

@@ -163,7 +163,8 @@ TEXT_FORMS: dict[str, list[str | tuple[str | int, ...]]] = {
     # the address as sent, even PLC style
     "mask": [("dec", "address"), " AND 0x", ("hex", "and_mask", 4), " OR 0x", ("hex", "or_mask", 4)],
     "pointer": ["pointer ", ("dec", "address")],
-    "read_write": ["read ", ("plain_span",), ", write ", ("values",)],  # PLC style: as its answer shows it
+    # PLC style: as its answer shows it; `write 5 (0)` writing none, as FC16's `5 (0)`
+    "read_write": ["read ", ("plain_span",), ", write ", ("write", "write_start", "write_quantity")],
     # `10 values: 0 100 … (+2)`, `0 values` (the step writes the colon before values it shows)
     "fifo": [("dec", "fifo_count"), " values", ("fifo", "fifo_count", "values")],
     "python": [("none",)],
@@ -255,6 +256,8 @@ def _step(step: tuple[str | int, ...]) -> Callable[[Frame], str]:
         return lambda frame: of(frame, frame.fields[args[0]])
     if what == "hex":
         return lambda frame: f"{frame.fields[args[0]]:0{args[1]}X}"
+    if what == "write":  # FC23's: its values, or where none are sent its window as sent (`5 (0)`), never nothing
+        return lambda frame: values_text(frame) or plain_span(frame.fields[args[0]], frame.fields[args[1]])
     if what == "fifo":  # the values sent (the first MAX_FIFO_VALUES), whatever their count says
         return lambda frame: _fifo(frame.fields[args[1]])
     raise ValueError(f"describe: no step {what!r}")
