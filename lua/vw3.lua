@@ -2436,6 +2436,7 @@ local DATA = {
           [20] = "file_record",
           [21] = "file_record",
           [22] = "mask",
+          [23] = "read_write",
           [24] = "pointer",
           [43] = "mei",
         },
@@ -2503,6 +2504,12 @@ local DATA = {
           { "hex", "and_mask", 4 },
           " OR 0x",
           { "hex", "or_mask", 4 },
+        },
+        ["read_write"] = {
+          "read ",
+          { "plain_span" },
+          ", write ",
+          { "write", "write_start", "write_quantity" },
         },
         ["fifo"] = {
           { "dec", "fifo_count" },
@@ -4190,6 +4197,10 @@ function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_te
       .. format("%04X", b[base + 4] * 256 + b[base + 5]) .. " OR 0x"
       .. format("%04X", b[base + 6] * 256 + b[base + 7])
   end
+  form.read_write = function(f, b, base, last, st, device)
+    return "read " .. span_text(f) .. ", write "
+      .. span_text({ start = b[base + 6] * 256 + b[base + 7], quantity = b[base + 8] * 256 + b[base + 9] })
+  end
   form.pointer = function(f, b, base, last, st, device)
     return "pointer " .. DECIMAL[b[base + 2] * 256 + b[base + 3]]
   end
@@ -4225,6 +4236,7 @@ function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_te
     [20] = { request = BY_NAME.file_record, response = BY_NAME.file_record },
     [21] = { request = BY_NAME.file_record, response = BY_NAME.file_record },
     [22] = { request = form.mask, response = form.mask },
+    [23] = { request = form.read_write },
     [24] = { request = form.pointer, response = form.fifo },
     [43] = { request = BY_NAME.mei, response = BY_NAME.mei },
   }

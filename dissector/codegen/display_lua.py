@@ -47,7 +47,7 @@ def form_body(form: str, steps: list[Any], places: dict[str, tuple[int, int | No
     _OF_FIELD, hex and fifo) in one concatenation. (st, device: where the frame's device is found, for a
     step that names a register: tree.lua summary)"""
     read_by = [step[1] for step in steps
-               if not isinstance(step, str) and step[0] not in ("label", "span", "data")]
+               if not isinstance(step, str) and step[0] not in ("label", "span", "plain_span", "data")]
     body, parts = [], []
 
     def value(name: str) -> str:  # (the field's value: its local, or read where it is used)
@@ -68,8 +68,10 @@ def form_body(form: str, steps: list[Any], places: dict[str, tuple[int, int | No
             parts.append(lua_literal(step))
             continue
         what = step[0]
-        if what in ("label", "span"):  # (describe.span_text: the window as named, PLC style too)
+        if what in ("label", "span", "plain_span"):  # (describe.span_text: the window as named, PLC style too)
             parts.append("span_text(f)")
+        elif what == "write":  # (FC23's write window as sent, describe.plain_span; its values left out)
+            parts.append(f"span_text({{ start = {value(step[1])}, quantity = {value(step[2])} }})")
         elif what == "dec":
             parts.append(f"DECIMAL[{value(step[1])}]")
         elif what == "hex":

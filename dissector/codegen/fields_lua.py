@@ -57,7 +57,10 @@ def start_words() -> dict[int, dict[str, str]]:
 # registers' values and bits are left out of its Info by design (its quick lanes keep one Info text for
 # every answer to a window, and for a write's request met again with other values: vw3.records), and the
 # window alone is that text already (SPAN_ALONE, no form then).
-PLUGIN_STEPS = frozenset({"hex", "dec", "coil", "subfunction", "data", "fifo", "label", "span", "single"})
+# FC23's request says both its windows (plain_span, write), its values left out as FC16's are: the text
+# vw3-decode gives where it writes none (`read 0, write 5 (0)`).
+PLUGIN_STEPS = frozenset({"hex", "dec", "coil", "subfunction", "data", "fifo", "label", "span", "single",
+                          "plain_span", "write"})
 SPAN_ALONE = [("span",)]
 # The describers of describe._BY_NAME the plugin has too (tree.lua BY_NAME), by name.
 PLUGIN_BY_NAME = frozenset({"mei", "report_server_id", "file_record"})

@@ -110,7 +110,7 @@ TREES: list[tuple[str, list[str]]] = [
     ("VW3 Modbus RTU, 1 Write Multiple Coils response 0..9 (10) written", ["    Start address: 0", "    Quantity: 10"]),
 ]
 TREES += [
-    ("VW3 Modbus RTU, 1 Read/Write Multiple Registers request 3..8 (6)", [
+    ("VW3 Modbus RTU, 1 Read/Write Multiple Registers request read 3..8 (6), write 14..16 (3)", [
         "    Read start: 3", "    Read quantity: 6", "    Write start: 14", "    Write quantity: 3",
         "    Byte count: 6",
         *[line for address in (14, 15, 16) for line in (
