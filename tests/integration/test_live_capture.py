@@ -14,6 +14,7 @@ import re
 import shutil
 import signal
 import statistics
+import struct
 import subprocess
 import sys
 import threading
@@ -339,6 +340,28 @@ def test_pcapng_written_live_is_read_back_by_both(tmp_path: Path, option: tuple[
             assert (comment, unit) == ("", str(item["slave"]))
 
 
+def _records_on_disk(folder: Path, pattern: str) -> int:
+    """Whole packet records in the captures `pattern` names in `folder` (pcapng EPBs, pcap records)."""
+    count = 0
+    for path in folder.glob(pattern):
+        data = path.read_bytes()
+        ng = data[:4] == bytes.fromhex("0a0d0d0a")
+        offset = 0 if ng else 24
+        while offset + (12 if ng else 16) <= len(data):
+            if ng:
+                kind, length = struct.unpack_from("<II", data, offset)
+                if length < 12 or offset + length > len(data):
+                    break
+                count += kind == 6
+            else:
+                length = 16 + struct.unpack_from("<I", data, offset + 8)[0]
+                if offset + length > len(data):
+                    break
+                count += 1
+            offset += length
+    return count
+
+
 def test_sigkill_leaves_valid_pcapng_and_ring_files(tmp_path: Path) -> None:
     pcapng, ring = tmp_path / "kill.pcapng", tmp_path / "kill.pcap"
     for seed, options in enumerate((("-w", str(pcapng)), ("-w", str(ring), "-b", "filesize:1"))):
@@ -350,6 +373,10 @@ def test_sigkill_leaves_valid_pcapng_and_ring_files(tmp_path: Path) -> None:
         master.start()
         while bus.slave.transactions < 100:
             time.sleep(0.001)
+        # (killed once 150 records are on disk: how far the sniffer's reads lag the bus is the machine's load)
+        deadline = time.monotonic() + 60
+        while _records_on_disk(tmp_path, ("kill.pcapng", "kill_*.pcap")[seed]) < 150 and time.monotonic() < deadline:
+            time.sleep(0.01)
         sniffer.process.send_signal(signal.SIGKILL)
         sniffer.process.wait(5)
         stop.set()
