@@ -3,7 +3,7 @@
     frame  time  slave code old -> new (unit)
 
 `--json` writes one object a change: `time` (seconds since the epoch, as the --json items' `time`),
-`time_relative` (seconds since the first item, a network or several-interface capture's first packet, as -T
+`time_relative` (seconds since the first item, a network, RTAC or several-interface capture's first packet, as -T
 fields' key), frame, slave, address, code, old, new, unit, and `provisional` when true; `-t` shapes the text
 lines' time column only.
 

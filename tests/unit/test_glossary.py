@@ -34,7 +34,7 @@ def test_tsharks_columns() -> None:
         # tshark's frame.time_epoch, as -T fields writes it (was FT_DOUBLE)
         "F\tTime\ttime\tFT_RELATIVE_TIME\tvw3\t\t0x0\tseconds since the epoch of the item's first byte",
         "F\tTime relative\ttime_relative\tFT_RELATIVE_TIME\tvw3\t\t0x0\tseconds since the first item of the input "
-        "(a network or several-interface capture's first packet)",
+        "(a network, RTAC or several-interface capture's first packet)",
         "F\tValue\tvalue\tFT_UINT16\tvw3\tBASE_DEC_HEX\t0x0\tregister value",
         "F\tRegister\tregisters\tFT_NONE\tvw3\t\t0x0\tregister values (presence)",
         "F\tPDU start\tfields.start\tFT_UINT16\tvw3\tBASE_DEC\t0x0\tPDU key of functions 1 2 3 4 15 16",
