@@ -10,7 +10,7 @@ The differences kept by design (BY_DESIGN below, and the tails):
   exception's kind word takes the place of the summary's colon (`3 Read Holding Registers exception 2
   (Illegal Data Address)`);
 - registers' values and bits are left out (`5..7 (3)`, not `5..7 (3): 5=1 6=2 7=3`; FC23's request its read
-  window): the plugin's quick lanes keep one Info text for every answer to a window and for a write's
+  and write windows): the plugin's quick lanes keep one Info text for every answer to a window and for a write's
   request met again with other values (lua/src/records.lua), and the tree holds each value;
 - the pairing, notes and warnings of the summary's tail are the tree's fields and expert infos, not the
   Info column (`[provisional]` is in both; a bad check is ` BAD CRC` / ` BAD LRC` there, the summary's
@@ -113,8 +113,19 @@ def values_left_out(description: str) -> str:
 BY_DESIGN = {
     **{(code, "response"): values_left_out for code in (1, 2, 3, 4, 23)},
     **{(code, "request"): values_left_out for code in (15, 16)},
-    (23, "request"): lambda description: description.split(", write ")[0].removeprefix("read "),
+    (23, "request"): lambda description: write_window(description),
 }
+
+
+def write_window(description: str) -> str:
+    """FC23's request: both windows, the write's values left out (`read 3..8 (6), write 14..16 (3)` of
+    `read 3..8 (6), write 14=255 15=255 16=255`); a request that sends none already shows its window."""
+    read, _, written = description.partition(", write ")
+    addresses = [token.split("=")[0] for token in written.split(" ") if "=" in token]
+    if not addresses:
+        return description
+    window = addresses[0] if len(addresses) == 1 else f"{addresses[0]}..{addresses[-1]} ({len(addresses)})"
+    return f"{read}, write {window}"
 CODES = {name: code for code, name in SPEC.functions.items()}
 
 
