@@ -14,16 +14,13 @@ tests/integration/test_lua_silence_before_stop.py."""
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from conftest import ROOT
 from helpers import rtu
 from test_silence_cut import live
+from test_silence_cut_files import decode_file as decode
 from test_timed_summary import write_pcap
 
 from dissector.app.live_capture import _TAPE_EVENT
@@ -50,17 +47,6 @@ def tape(path: Path, reads: list[tuple[bytes, float]], stop: float) -> Path:
     path.write_bytes(b"".join(_TAPE_EVENT.pack(1000 + at, T0 + round(at * 1e6) * 1000, len(data)) + data
                               for data, at in events))
     return path
-
-
-def decode(capture: Path, pure: bool, *options: str) -> list[str]:
-    env = dict(os.environ)
-    env.pop("VW3_PURE_PYTHON", None)
-    if pure:
-        env["VW3_PURE_PYTHON"] = "1"
-    run = subprocess.run([sys.executable, "-m", "dissector", "-n", *options, str(capture)], cwd=ROOT, env=env,
-                         capture_output=True, text=True, timeout=120)
-    assert run.returncode == 0, run.stderr
-    return run.stdout.splitlines()
 
 
 def live_and_file(tmp_path: Path, pure: bool, reads: list[tuple[bytes, float]], stop: float,

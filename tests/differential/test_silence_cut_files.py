@@ -47,6 +47,11 @@ def decode(records: list[tuple[bytes, int]], form: str, pure: bool, tmp_path: Pa
     """vw3-decode's lines on a file of `records` (bytes, time in ns) in format `form`."""
     capture = tmp_path / f"capture.{form}"
     WRITERS[form](capture, records)
+    return decode_file(capture, pure, *options)
+
+
+def decode_file(capture: Path, pure: bool, *options: str) -> list[str]:
+    """vw3-decode's lines on `capture`, by the compiled engine or (pure) the Python stages."""
     env = dict(os.environ)
     env.pop("VW3_PURE_PYTHON", None)
     if pure:

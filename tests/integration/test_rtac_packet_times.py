@@ -7,16 +7,15 @@ showed 0.000000 where tshark shows 0.001000 (the event record before it), the an
 from __future__ import annotations
 
 import struct
-import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 from helpers import run_cli, use_engine
-from lua_harness import ensure_tool
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "differential"))  # (collected alone: not on the path)
 from test_timed_summary import decode  # noqa: E402
+from test_several_interface_times import _tsharks  # noqa: E402
 
 REQUEST = bytes.fromhex("0C0320D000030EEF")
 ANSWER = bytes.fromhex("0C0306000100020003A5E4")
@@ -76,15 +75,6 @@ def _beside(path: Path) -> Path:
 
 
 WRITERS = pytest.mark.parametrize("write", [_pcap, _alone], ids=["pcap", "pcapng"])
-
-
-def _tsharks(path: Path) -> dict[str, str]:
-    """tshark's frame.time_relative and frame.time_delta by frame number, tab-separated (no plugin needed)."""
-    done = subprocess.run([ensure_tool("tshark", "tshark"), "-n", "-r", str(path), "-T", "fields", "-e",
-                           "frame.number", "-e", "frame.time_relative", "-e", "frame.time_delta"],
-                          capture_output=True, text=True, timeout=300)
-    assert done.returncode == 0, done.stderr
-    return {row.split("\t")[0]: "\t".join(row.split("\t")[1:]) for row in done.stdout.splitlines()}
 
 
 def _column(path: Path, *options: str) -> list[str]:
