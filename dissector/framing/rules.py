@@ -14,6 +14,7 @@ from dissector.protocol.rules import data_bytes
 from dissector.protocol.spec import SPEC
 
 MAX_ADU = int(SPEC.limits["max_adu"])  # type: ignore[call-overload]
+MAX_COUNTED = table.LONGEST_COUNTED  # (a length rule's frame over MAX_ADU counts with a good CRC only, warned)
 MIN_ADU = table.SCAN.minimum
 MAX_SLAVE = int(SPEC.limits["max_slave"])  # type: ignore[call-overload]
 
