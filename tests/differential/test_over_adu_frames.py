@@ -33,7 +33,7 @@ READ_126, ANSWER_126 = rtu("01 03 0000 007e"), rtu("01 03 fc" + WORDS)  # (byte 
 # A byte count of 250 whose CRC is bad: noise, as before
 LOOKALIKE = bytes.fromhex("01 10 0000 007d fa" + WORDS[: 4 * 125]) + b"\x12\x34"
 
-OVER = "[warning: frame length {} above the spec's 256-byte ADU (its header gives it, its CRC good)]"
+OVER = "[warning: frame length {} above the spec's 256-byte ADU (its header gives it)]"
 FC23_LINE = ("1 request   Read/Write Multiple Registers read 0, write 16=0 17=1 18=2 19=3 20=4 21=5 … (+116) "
              + OVER.format(257) + " [warning: write quantity 122 outside the spec's 1..121]  CRC ok")
 FC16_LINE = ("1 request   Write Multiple Registers 0..124 (125): 0=0 1=1 2=2 3=3 4=4 5=5 … (+119) "
@@ -66,7 +66,7 @@ def test_long_frames_in_a_raw_stream(tmp_path: Path, monkeypatch: pytest.MonkeyP
         "1 request   Read Holding Registers 0..1 (2) [the capture ends before any response: not known whether it was"
         " answered]  CRC ok",
     ]
-    assert "    Warning: frame length 259 above the spec's 256-byte ADU (its header gives it, its CRC good)" in verbose
+    assert "    Warning: frame length 259 above the spec's 256-byte ADU (its header gives it)" in verbose
 
 
 def test_long_frames_a_record_each(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -77,7 +77,7 @@ def test_long_frames_a_record_each(tmp_path: Path, monkeypatch: pytest.MonkeyPat
     assert out[0] == "     1  0.000000000   " + FC23_LINE
     assert out[2] == "     3  0.200000000   " + FC16_LINE
     assert out[5] == "     6  0.500000000   " + ANSWER_LINE.format("5, 100.0 ms")
-    assert "    Warning: frame length 257 above the spec's 256-byte ADU (its header gives it, its CRC good)" in verbose
+    assert "    Warning: frame length 257 above the spec's 256-byte ADU (its header gives it)" in verbose
     # (bytes cut by USB reads: the same frames; a record's end inside a long frame is no bound of it)
     stream = b"".join(frames)
     write_pcap(capture, [(stream[at : at + 64], T0 + at * 10**5) for at in range(0, len(stream), 64)])
@@ -131,7 +131,7 @@ def test_long_ascii_lines(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> No
     bad = _ascii(FC16)[:-4] + b"00\r\n"  # (its LRC wrong: no line end within 513 characters, as before)
     capture.write_bytes(_ascii(POLL) + _ascii(ANSWER) + _ascii(FC23) + _ascii(FC23_ANSWER) + bad + _ascii(POLL))
     out, verbose = _lines(capture, monkeypatch)
-    long = "[warning: frame length 515 above the spec's 513 characters (its header gives it, its LRC good)]"
+    long = "[warning: frame length 515 above the spec's 513 characters (its header gives it)]"
     assert out[2] == ("     3            -   1 request   Read/Write Multiple Registers read 0, write 16=0 17=1 18=2 19=3"
                       f" 20=4 21=5 … (+116) {long} [warning: write quantity 122 outside the spec's 1..121]  LRC ok")
     assert out[3] == "     4            -   1 response  Read/Write Multiple Registers 0: 0=7 [#3]  LRC ok"
@@ -144,3 +144,13 @@ def test_long_ascii_lines(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> No
     assert out[6] == ("     7            -   1 request   Read Holding Registers 0..1 (2) [the capture ends before any"
                       " response: not known whether it was answered]  LRC ok")
     assert "    Warning: " + long[10:-1] in verbose
+
+
+def test_a_long_frame_typed_without_its_crc(monkeypatch: pytest.MonkeyPatch) -> None:
+    # (its length is its header's: the CRC to append is said, as for a frame within the ADU; rules.spans_a_frame)
+    out, _ = assert_same(["--hex", FC23[:-2].hex()], monkeypatch)
+    assert out.splitlines() == [
+        "     1            -   1 request   Read/Write Multiple Registers read 0, write 16=0 17=1 18=2 19=3 20=4 21=5 …"
+        " (+116) [the capture ends before any response: not known whether it was answered] [no CRC typed: append"
+        f" {FC23[-2]:02X} {FC23[-1]:02X} (CRC 0x{FC23[-1]:02X}{FC23[-2]:02X})] " + OVER.format(257)
+        + " [warning: write quantity 122 outside the spec's 1..121]  CRC computed (none typed)"]

@@ -29,7 +29,7 @@ LOOKALIKE = bytes.fromhex("01 10 0000 007d fa" + WORDS[: 4 * 125]) + b"\x12\x34"
 POLL = rtu("01 03 0000 0002")
 FIELDS = ["-T", "fields", "-E", "separator=;", "-e", "vw3.kind", "-e", "vw3.function", "-e", "vw3.start", "-e",
           "vw3.quantity", "-e", "vw3.byte_count", "-e", "vw3.warning"]
-OVER = "frame length {} above the spec's 256-byte ADU (its header gives it, its CRC good)"
+OVER = "frame length {} above the spec's 256-byte ADU (its header gives it)"
 ROWS = [
     f"1;23;0;1;244;{OVER.format(257)},write quantity 122 outside the spec's 1..121",
     "2;23;0;1;2;",
@@ -75,7 +75,7 @@ def test_long_ascii_lines_are_frames(tmp_path: Path) -> None:
     bad = _ascii(FC16)[:-4] + b"00\r\n"  # (its LRC wrong: noise, as before)
     lines = [_ascii(POLL), _ascii(FC23), _ascii(FC23_ANSWER), bad]
     pcap = write_pcap(tmp_path / "long.pcap", [(line, T0 + k / 10) for k, line in enumerate(lines)])
-    long = "frame length 515 above the spec's 513 characters (its header gives it, its LRC good)"
+    long = "frame length 515 above the spec's 513 characters (its header gives it)"
     assert tshark_fields(pcap, FIELDS + ["-e", "vw3.noise.reason"]) == [
         "1;3;0;2;;;",
         f"1;23;0;1;244;{long},write quantity 122 outside the spec's 1..121;",
