@@ -5945,6 +5945,7 @@ local function rtu_frame(b, i, offset, time, kind, length, crc_ok)
     number = 0, record = 0, at = 0, -- (set by take_items: in the constructor, the hash is made at its size)
     -- (and the keys decoding adds: a table that outgrows its hash is rebuilt, each key inserted again)
     fields = nil, start = nil, quantity = nil, registers = nil, bits = nil, request = nil, response = nil,
+    warnings = length > MAX_ADU and { say("over_adu", { length = length, limit = MAX_ADU }) } or nil, -- (match's)
   }
 end
 
@@ -6132,9 +6133,7 @@ local function run_rtu(s, final, items)
         i = upto
       else
         local offset = s.base + i
-        local frame = rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok)
-        if length > MAX_ADU then frame.warnings = { say("over_adu", { length = length, limit = MAX_ADU }) } end
-        emit(s, frame, items)
+        emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)
         i = i + length
       end
     end
