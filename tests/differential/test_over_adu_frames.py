@@ -20,7 +20,7 @@ from dissector.framing.rtu import RtuFramer
 from dissector.model import Chunk, Frame
 from dissector.protocol.crc import lrc
 from helpers import rtu
-from test_timed_summary import assert_same, write_pcap
+from test_timed_summary import CHAR_NS, assert_same, write_pcap
 
 T0 = 1_700_000_000 * 10**9
 POLL, ANSWER = rtu("01 03 0000 0002"), rtu("01 03 04 0001 0002")
@@ -72,15 +72,15 @@ def test_long_frames_in_a_raw_stream(tmp_path: Path, monkeypatch: pytest.MonkeyP
 def test_long_frames_a_record_each(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     capture = tmp_path / "long.pcap"
     frames = [FC23, FC23_ANSWER, FC16, FC16_ANSWER, READ_126, ANSWER_126]
-    write_pcap(capture, [(frame, T0 + k * 10**8) for k, frame in enumerate(frames)])
+    write_pcap(capture, [(frame, T0 + k * 3 * 10**8) for k, frame in enumerate(frames)])  # (257 bytes: 147 ms at 19200 baud)
     out, verbose = _lines(capture, monkeypatch)
     assert out[0] == "     1  0.000000000   " + FC23_LINE
-    assert out[2] == "     3  0.200000000   " + FC16_LINE
-    assert out[5] == "     6  0.500000000   " + ANSWER_LINE.format("5, 100.0 ms")
+    assert out[2] == "     3  0.600000000   " + FC16_LINE
+    assert out[5] == "     6  1.500000000   " + ANSWER_LINE.format("5, 300.0 ms")
     assert "    Warning: frame length 257 above the spec's 256-byte ADU (its header gives it)" in verbose
     # (bytes cut by USB reads: the same frames; a record's end inside a long frame is no bound of it)
     stream = b"".join(frames)
-    write_pcap(capture, [(stream[at : at + 64], T0 + at * 10**5) for at in range(0, len(stream), 64)])
+    write_pcap(capture, [(stream[at : at + 64], T0 + at * CHAR_NS) for at in range(0, len(stream), 64)])
     cut, _ = _lines(capture, monkeypatch)
     paired = [re.sub(r"\[#(\d), [^]]+\]", r"[#\1]", line[22:]) for line in out]
     assert [re.sub(r"\[#(\d), [^]]+\]", r"[#\1]", line[22:]) for line in cut] == paired

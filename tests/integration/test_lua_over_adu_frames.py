@@ -51,7 +51,7 @@ def _mbrtu(pcap: Path) -> list[str]:
 
 def test_long_frames_are_frames(tmp_path: Path) -> None:
     frames = [FC23, FC23_ANSWER, FC16, FC16_ANSWER, READ_126, ANSWER_126]
-    pcap = write_pcap(tmp_path / "long.pcap", [(frame, T0 + k / 10) for k, frame in enumerate(frames)])
+    pcap = write_pcap(tmp_path / "long.pcap", [(frame, T0 + k * 0.3) for k, frame in enumerate(frames)])
     assert tshark_fields(pcap, FIELDS) == ROWS
     # (mbrtu: the function of each, FC16's and FC3's counts as the plugin's; FC23's request it shows by its code)
     assert _mbrtu(pcap) == ["1;23;;;", "1;23;;;", "1;16;0;125;250", "1;16;0;125;", "1;3;0;126;", "1;3;;;252"]
@@ -74,7 +74,7 @@ def _ascii(frame: bytes) -> bytes:
 def test_long_ascii_lines_are_frames(tmp_path: Path) -> None:
     bad = _ascii(FC16)[:-4] + b"00\r\n"  # (its LRC wrong: noise, as before)
     lines = [_ascii(POLL), _ascii(FC23), _ascii(FC23_ANSWER), bad]
-    pcap = write_pcap(tmp_path / "long.pcap", [(line, T0 + k / 10) for k, line in enumerate(lines)])
+    pcap = write_pcap(tmp_path / "long.pcap", [(line, T0 + k / 2) for k, line in enumerate(lines)])  # (515: 268 ms)
     long = "frame length 515 above the spec's 513 characters (its header gives it)"
     assert tshark_fields(pcap, FIELDS + ["-e", "vw3.noise.reason"]) == [
         "1;3;0;2;;;",
