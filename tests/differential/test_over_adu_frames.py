@@ -72,7 +72,7 @@ def test_long_frames_in_a_raw_stream(tmp_path: Path, monkeypatch: pytest.MonkeyP
 def test_long_frames_a_record_each(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     capture = tmp_path / "long.pcap"
     frames = [FC23, FC23_ANSWER, FC16, FC16_ANSWER, READ_126, ANSWER_126]
-    write_pcap(capture, [(frame, T0 + k * 3 * 10**8) for k, frame in enumerate(frames)])  # (257 bytes: 147 ms at 19200 baud)
+    write_pcap(capture, [(frame, T0 + k * 3 * 10**8) for k, frame in enumerate(frames)])  # (257 bytes: 147 ms at 19200)
     out, verbose = _lines(capture, monkeypatch)
     assert out[0] == "     1  0.000000000   " + FC23_LINE
     assert out[2] == "     3  0.600000000   " + FC16_LINE
@@ -132,8 +132,8 @@ def test_long_ascii_lines(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> No
     capture.write_bytes(_ascii(POLL) + _ascii(ANSWER) + _ascii(FC23) + _ascii(FC23_ANSWER) + bad + _ascii(POLL))
     out, verbose = _lines(capture, monkeypatch)
     long = "[warning: frame length 515 above the spec's 513 characters (its header gives it)]"
-    assert out[2] == ("     3            -   1 request   Read/Write Multiple Registers read 0, write 16=0 17=1 18=2 19=3"
-                      f" 20=4 21=5 … (+116) {long} [warning: write quantity 122 outside the spec's 1..121]  LRC ok")
+    assert out[2] == ("     3            -   1 request   Read/Write Multiple Registers read 0, write 16=0 17=1 18=2"
+                      f" 19=3 20=4 21=5 … (+116) {long} [warning: write quantity 122 outside the spec's 1..121]  LRC ok")
     assert out[3] == "     4            -   1 response  Read/Write Multiple Registers 0: 0=7 [#3]  LRC ok"
     assert out[4:6] == [
         "     5            -   - noise     513 bytes of noise at offset 566: 3a 30 31 31 30 30 30 30 30 30 30 37 44 46"
@@ -150,7 +150,7 @@ def test_a_long_frame_typed_without_its_crc(monkeypatch: pytest.MonkeyPatch) -> 
     # (its length is its header's: the CRC to append is said, as for a frame within the ADU; rules.spans_a_frame)
     out, _ = assert_same(["--hex", FC23[:-2].hex()], monkeypatch)
     assert out.splitlines() == [
-        "     1            -   1 request   Read/Write Multiple Registers read 0, write 16=0 17=1 18=2 19=3 20=4 21=5 …"
-        " (+116) [the capture ends before any response: not known whether it was answered] [no CRC typed: append"
+        "     1            -   1 request   Read/Write Multiple Registers read 0, write 16=0 17=1 18=2 19=3 20=4"
+        " 21=5 … (+116) [the capture ends before any response: not known whether it was answered] [no CRC typed: append"
         f" {FC23[-2]:02X} {FC23[-1]:02X} (CRC 0x{FC23[-1]:02X}{FC23[-2]:02X})] " + OVER.format(257)
         + " [warning: write quantity 122 outside the spec's 1..121]  CRC computed (none typed)"]
