@@ -133,7 +133,8 @@ def test_long_ascii_lines(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> No
     out, verbose = _lines(capture, monkeypatch)
     long = "[warning: frame length 515 above the spec's 513 characters (its header gives it)]"
     assert out[2] == ("     3            -   1 request   Read/Write Multiple Registers read 0, write 16=0 17=1 18=2"
-                      f" 19=3 20=4 21=5 … (+116) {long} [warning: write quantity 122 outside the spec's 1..121]  LRC ok")
+                      f" 19=3 20=4 21=5 … (+116) {long} [warning: write quantity 122 outside the spec's 1..121]"
+                      "  LRC ok")
     assert out[3] == "     4            -   1 response  Read/Write Multiple Registers 0: 0=7 [#3]  LRC ok"
     assert out[4:6] == [
         "     5            -   - noise     513 bytes of noise at offset 566: 3a 30 31 31 30 30 30 30 30 30 30 37 44 46"
@@ -151,6 +152,6 @@ def test_a_long_frame_typed_without_its_crc(monkeypatch: pytest.MonkeyPatch) -> 
     out, _ = assert_same(["--hex", FC23[:-2].hex()], monkeypatch)
     assert out.splitlines() == [
         "     1            -   1 request   Read/Write Multiple Registers read 0, write 16=0 17=1 18=2 19=3 20=4"
-        " 21=5 … (+116) [the capture ends before any response: not known whether it was answered] [no CRC typed: append"
-        f" {FC23[-2]:02X} {FC23[-1]:02X} (CRC 0x{FC23[-1]:02X}{FC23[-2]:02X})] " + OVER.format(257)
+        " 21=5 … (+116) [the capture ends before any response: not known whether it was answered] [no CRC typed:"
+        f" append {FC23[-2]:02X} {FC23[-1]:02X} (CRC 0x{FC23[-1]:02X}{FC23[-2]:02X})] " + OVER.format(257)
         + " [warning: write quantity 122 outside the spec's 1..121]  CRC computed (none typed)"]
