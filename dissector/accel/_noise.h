@@ -96,13 +96,14 @@ static int nz_match(const Line *L, Py_ssize_t i) {
             continue;
         }
         Py_ssize_t length = found.what == LENGTH_NEED ? NZ_NEED : found.value;
-        if (length != NZ_NEED && (length < MIN_ADU || length > MAX_ADU)) continue;
+        if (length != NZ_NEED && (length < MIN_ADU || length > MAX_COUNTED)) continue;
         if (length == NZ_NEED || i + length > n) {
             waiting += !crosses_framed_record(L, i, length, n);
             continue;
         }
         if (crc_ok(b, i, length)) return NZ_TAKE;
-        if (!nz_counts_nothing(function, nz_kind(function, expected, r), length)) damaged_length[damaged++] = length;
+        if (length <= MAX_ADU && !nz_counts_nothing(function, nz_kind(function, expected, r), length))
+            damaged_length[damaged++] = length; /* (over it: a good CRC only) */
     }
     if (waiting) return NZ_WAIT;
     if (slave > MAX_SLAVE || (slave == 0 && not_broadcast[function])) return NZ_NOISE;

@@ -577,7 +577,7 @@ static int rule_check(const LengthRule *rule, const uint8_t *b, Py_ssize_t i, Py
     Length found = rule_length(rule, b, i, n);
     *length = found.what == LENGTH_NEED ? -1 : found.value;
     if (found.what != LENGTH_OK) return found.what == LENGTH_SCAN ? -1 : 2;
-    if (*length < MIN_ADU || *length > MAX_ADU) return 0;
+    if (*length < MIN_ADU || *length > MAX_COUNTED) return 0;
     return i + *length > n ? 2 : crc_ok(b, i, *length);
 }
 
@@ -630,12 +630,13 @@ static int ends_record(const Line *L, Py_ssize_t j, Py_ssize_t n) {
     int count = layouts(L->b[j + 1], awaited(L, j), rules);
     for (int r = 0; r < count; r++) {
         Length found = rule_length(rules[r], L->b, j, n);
-        Py_ssize_t length = found.what == LENGTH_NEED ? -1 : found.value;
+        Py_ssize_t length = found.what == LENGTH_NEED ? -1 : found.value, longest = MAX_COUNTED;
         if (found.what == LENGTH_SCAN) {
             Py_ssize_t end = line_end_after(L, j, n);
             length = end >= 0 && end - j >= found.value ? end - j : 0;
+            longest = MAX_ADU;
         }
-        if (length >= MIN_ADU && length <= MAX_ADU && j + length <= n && line_bound(L, j + length) &&
+        if (length >= MIN_ADU && length <= longest && j + length <= n && line_bound(L, j + length) &&
             crc_ok(L->b, j, length))
             return 1;
     }
@@ -688,7 +689,7 @@ static int valid_frame_at(const Line *L, Py_ssize_t j, Py_ssize_t n, int final, 
             continue;
         }
         Py_ssize_t length = found.value;
-        if (length < MIN_ADU || length > MAX_ADU) continue;
+        if (length < MIN_ADU || length > MAX_COUNTED) continue;
         if (j + length > n) {
             if (final || crosses_framed_record(L, j, length, n)) continue;
             return -1;

@@ -179,6 +179,7 @@ static const LengthRule known_rule[KNOWN][3] = {
 /* Constants of the framer (framing/rules.py, data/modbus.toml [limits]) and of render/describe.py. */
 #define MIN_ADU 4
 #define MAX_ADU 256
+#define MAX_COUNTED 268
 #define MAX_SLAVE 247
 #define GLITCH_SKIP 16
 #define MAX_VALUES 6

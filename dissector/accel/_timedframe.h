@@ -50,7 +50,7 @@ static int decide_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, in
         return FRAME_OK;
     }
     if (length == FRAME_HANDOVER) return FRAME_HANDOVER;
-    Py_ssize_t shortest = MAX_ADU + 1;
+    Py_ssize_t shortest = MAX_COUNTED + 1;
     int waits, valid;
     if (length == FRAME_NEED || i + length > m) {
         /* The first layout waits for its bytes: _match waits too, unless another one checks out, or they would

@@ -282,6 +282,7 @@ def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
         "/* Constants of the framer (framing/rules.py, data/modbus.toml [limits]) and of render/describe.py. */",
         f"#define MIN_ADU {framing_rules.MIN_ADU}",
         f"#define MAX_ADU {framing_rules.MAX_ADU}",
+        f"#define MAX_COUNTED {framing_rules.MAX_COUNTED}",
         f"#define MAX_SLAVE {framing_rules.MAX_SLAVE}",
         f"#define GLITCH_SKIP {framing_rules.GLITCH_SKIP}",
         f"#define MAX_VALUES {describe.MAX_VALUES}",

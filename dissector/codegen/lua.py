@@ -97,6 +97,7 @@ def plugin_data() -> dict[str, Any]:
         # (the spec limits: in the rule data, DATA.rules.limits, codegen/rules_lua.py)
         "framing": {
             "max_adu": framer.MAX_ADU,
+            "max_counted": framer.MAX_COUNTED,  # (a length rule's frame over max_adu: a good CRC only, warned)
             "min_adu": framer.MIN_ADU,
             "max_slave": framer.MAX_SLAVE,
             "noise_item_max": streambuf.NOISE_ITEM_MAX,

@@ -29,7 +29,7 @@ cannot end a line after a CR), drops the slave's character. Once read, a line is
 from __future__ import annotations
 
 from dissector.protocol.crc import crc_bytes, lrc
-from dissector.framing.rtu import MAX_ADU, NEED, Awaiting, Scan
+from dissector.framing.rtu import MAX_ADU, MAX_COUNTED, NEED, Awaiting, Scan
 from dissector.model import Frame, Item, Kind, Noise
 from dissector.framing.stream import StreamFramer
 
@@ -95,6 +95,11 @@ class AsciiFramer(Awaiting, StreamFramer):
                     end += end < n and buf[end] == CR
                 self._candidate(bytes(buf[i:end]), i, items)
                 i = end
+            elif n - i >= MAX_ASCII and (end := self._long_line(buf, i, n, final)):
+                if end == NEED:
+                    break
+                self._candidate(bytes(buf[i:end]), i, items)
+                i = end
             elif n - i >= MAX_ASCII:
                 self._reject(bytes(buf[i : i + MAX_ASCII]), i, text("no_line_end", limit=MAX_ASCII), items)
                 i += MAX_ASCII
@@ -110,6 +115,29 @@ class AsciiFramer(Awaiting, StreamFramer):
         if i:
             self._consume(i)
         return items
+
+    def _long_line(self, buf: bytearray, i: int, n: int, final: bool) -> int:
+        """Where a line from i longer than MAX_ASCII ends when its header gives its length (an RTU frame's over
+        MAX_ADU: rules.MAX_COUNTED) and it is that frame: hex pairs, CR LF there, its LRC good; 0: not one (the
+        bytes are noise as before), NEED: its bytes have not all come. A header only fixes where to look: the
+        bytes weighed stay bounded."""
+        head = bytes(buf[i + 1 : i + MAX_ASCII])  # (the hex pairs of MAX_ADU bytes: they have come, no LF among them)
+        if any(byte not in _HEX_DIGITS for byte in head):
+            return 0
+        binary = bytes.fromhex(head.decode())
+        for _kind, rule in self._interpretations(binary, 0):
+            length = rule(binary, 0, len(binary))
+            if type(length) is Scan or not MAX_ADU < length <= MAX_COUNTED:
+                continue
+            end = 1 + 2 * (length - 1) + 2  # (':', the ADU's hex pairs and the LRC's, CR LF)
+            digits = bytes(buf[i + 1 : min(n, i + end - 2)])
+            if any(byte not in _HEX_DIGITS for byte in digits[len(head) :]):
+                return 0
+            if n - i < end:
+                return 0 if final else NEED
+            binary = bytes.fromhex(digits.decode())
+            return i + end if buf[i + end - 2 : i + end] == b"\r\n" and lrc(binary[:-1]) == binary[-1] else 0
+        return 0
 
     def _changed_end(self, buf: bytearray, i: int, limit: int, lf: int) -> int:
         """Where the line from i ends: at a delimiter 08/03 set, after a CR, before the LF at `lf` (-1: none)
@@ -176,6 +204,8 @@ class AsciiFramer(Awaiting, StreamFramer):
             crc_expected=expected,
             mode="ascii",
         )
+        if len(raw) > MAX_ASCII:  # (_long_line's)
+            frame.warnings.append(text("over_ascii", length=len(raw), limit=MAX_ASCII))
         before = self._delimiters.get(slave)
         if kind is Kind.RESPONSE and received == expected:
             self._changed(binary)

@@ -11,7 +11,7 @@ from bisect import bisect_left
 from heapq import heappop, heappush
 
 from dissector.framing.offsets import EndAnswers
-from dissector.framing.rules import MAX_ADU, MIN_ADU, NEED, NONE, Scan, _crc_ok
+from dissector.framing.rules import MAX_ADU, MAX_COUNTED, MIN_ADU, NEED, NONE, Scan, _crc_ok
 
 SETTLED = 1 << 62  # (a buffer length no stream reaches: no more bytes change the answer)
 
@@ -39,7 +39,9 @@ class RecordEnds:
             until = n + 1
         for _kind, rule in self._interpretations(buf, i):
             length = rule(buf, i, n)
+            longest = MAX_COUNTED  # (a length rule's; a scan's: MAX_ADU)
             if type(length) is Scan:
+                longest = MAX_ADU
                 walk = length.declared  # (NONE but for an FC43 object walk: its length, NEED short of the bytes)
                 if walk == NEED:
                     until = min(until, i + length.wanted + 1)
@@ -51,7 +53,7 @@ class RecordEnds:
                 length = end - self._base - i if end is not None and end - self._base - i >= length else NONE
             elif length == NEED:
                 until = min(until, n + 1)
-            if MIN_ADU <= length <= MAX_ADU:
+            if MIN_ADU <= length <= longest:
                 if i + length >= n:
                     until = min(until, i + length if i + length > n else n + 1)
                 if i + length <= n and self._boundary_at(i + length) and _crc_ok(buf, i, length):

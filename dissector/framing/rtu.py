@@ -1,6 +1,7 @@
 """Modbus RTU framer: a byte stream in, frames and noise out.
 
-An RTU frame is `slave | function | data | CRC-16 (low byte first)`, at most 256 bytes. On the wire,
+An RTU frame is `slave | function | data | CRC-16 (low byte first)`, at most 256 bytes (a longer one whose
+header gives its length, up to rules.MAX_COUNTED, is a frame when its CRC is good, with a warning). On the wire,
 frames are separated by a silence of 3.5 character times, but a listen-only tap seldom keeps that
 information: a raw capture has no timestamps at all, and USB serial adapters deliver bytes in bursts
 (FTDI: 16 ms latency timer), so a request and its response may arrive in one read and a long response
@@ -70,6 +71,7 @@ from dissector.framing.reach import RecordEnds
 from dissector.framing.evidence import plausible_request as _plausible_request
 from dissector.framing.rules import (  # noqa: F401 (re-exported: the framer's tables, by their old home)
     MAX_ADU,
+    MAX_COUNTED,
     MIN_ADU,
     MAX_SLAVE,
     NEED,
@@ -171,7 +173,7 @@ class RtuFramer(RecordEnds, Bounded, Awaiting, StreamFramer):
                 if final or not self._crosses_framed_record(buf, i, length, n):
                     return None if not final else False
                 continue  # (bytes that would swallow a record that is a frame: none, not waited for)
-            if length < MIN_ADU or length > MAX_ADU:
+            if length < MIN_ADU or length > MAX_COUNTED:
                 continue
             if i + length > n:
                 if final or self._crosses_framed_record(buf, i, length, n):
@@ -282,7 +284,7 @@ class RtuFramer(RecordEnds, Bounded, Awaiting, StreamFramer):
                 elif MIN_ADU <= length.declared <= min(MAX_ADU, n - i):
                     damaged.append((kind, length.declared))  # (the length its fields give, its CRC bad)
                 continue
-            if length != NEED and (length < MIN_ADU or length > MAX_ADU):
+            if length != NEED and (length < MIN_ADU or length > MAX_COUNTED):
                 continue
             if length == NEED or i + length > n:
                 if not final and not self._crosses_framed_record(buf, i, length, n):
@@ -290,7 +292,7 @@ class RtuFramer(RecordEnds, Bounded, Awaiting, StreamFramer):
                 continue
             if _crc_ok(buf, i, length):
                 valid.append((kind, length))
-            elif not _counts_nothing(buf, i, kind, length):
+            elif length <= MAX_ADU and not _counts_nothing(buf, i, kind, length):  # (over it: a good CRC only)
                 damaged.append((kind, length))
         if len(valid) == 1:
             kind, length = valid[0]
@@ -577,6 +579,8 @@ class RtuFramer(RecordEnds, Bounded, Awaiting, StreamFramer):
                 crc=raw[-2] | raw[-1] << 8,
                 crc_expected=crc16(raw[:-2]),
             )
+            if length > MAX_ADU:  # (a length rule's, its CRC good: _match)
+                frame.warnings.append(text("over_adu", length=length, limit=MAX_ADU))
             self._emit(frame, items)
             i += length
         if i:

@@ -14,6 +14,7 @@ from dissector.protocol.rules import data_bytes
 from dissector.protocol.spec import SPEC
 
 MAX_ADU = int(SPEC.limits["max_adu"])  # type: ignore[call-overload]
+MAX_COUNTED = table.LONGEST_COUNTED  # (a length rule's frame over MAX_ADU counts with a good CRC only, warned)
 MIN_ADU = table.SCAN.minimum
 MAX_SLAVE = int(SPEC.limits["max_slave"])  # type: ignore[call-overload]
 
@@ -183,16 +184,16 @@ def spans_a_frame(data: bytes | bytearray) -> bool:
     Between its record's start and end such a reading is a frame (rtu.py _match: a record that is a frame is
     the source's word); ending an input that has no records it is not, unless awaited (rtu.py _followed:
     the end of the input says little). The -w writer reads it so (render/capturefile.py
-    CaptureOutput.release)."""
+    CaptureOutput.release). Over MAX_ADU, a length rule's frame with a good CRC only (as the framer takes it)."""
     n = len(data)
-    if not MIN_ADU <= n <= MAX_ADU:
+    if not MIN_ADU <= n <= MAX_COUNTED:
         return False
     for _kind, rule in REQUEST_FIRST.get(data[1], ()):
         length = rule(data, 0, n)
         if type(length) is Scan:
-            if length.declared == n or n in crc_lengths(data, 0, length, n):
+            if n <= MAX_ADU and (length.declared == n or n in crc_lengths(data, 0, length, n)):
                 return True
-        elif length == n:
+        elif length == n and (n <= MAX_ADU or _crc_ok(data, 0, n)):  # (over MAX_ADU: a good CRC only, rtu.py)
             return True
     return False
 

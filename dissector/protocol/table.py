@@ -298,6 +298,15 @@ def known_layouts() -> list[tuple[int, Layout, Layout]]:
     return known + [(code, RAW_LAYOUT, RAW_LAYOUT) for code in sorted(OTHER_FUNCTIONS) if code not in TABLE]
 
 
+# The longest frame a header may give its length (the framers take one over [limits] max_adu when its CRC is good,
+# with a warning): the most a one-byte count can say, FC23's request 13 + 255. A word count or a quantity (FC24's,
+# FC16's) is held to it too, so that the bytes weighed at a position stay bounded; a CRC scan keeps max_adu.
+LONGEST_COUNTED = max(
+    layout.length.extra + 0xFF
+    for entry in FUNCTIONS for layout in (entry.request, entry.response)
+    if isinstance(layout.length, Counted) and layout.length.width == 1
+)
+
 # Codes the compiled summary path shows (accel/_summary.c through accel/_tables.h), in table order.
 COMPILED = tuple(entry.code for entry in FUNCTIONS if entry.compiled is not None)
 

@@ -17,6 +17,7 @@ local MODE_REACH = 2 * MAX_ASCII -- (how far they grow while they cannot tell: p
 local PUBLIC = DATA.functions -- (the public function codes: an RTU frame that tells a stream is RTU has one)
 -- FC8 sub-functions whose data word is a character then 00: the line end they set in place of LF (03).
 local SETS_DELIMITER = DATA.ascii.sets_delimiter
+local MAX_COUNTED = FRAMING.max_counted -- (a line over MAX_ASCII whose header gives its length: long_line)
 
 local function lrc(bytes_, count)
   local sum = 0
@@ -245,6 +246,7 @@ local function ascii_candidate(s, at, length, items, reason, at_end)
   else
     warnings[1] = end_warning(s, kind, slave, b[at + length - 1], before)
   end
+  if length > MAX_ASCII then table.insert(warnings, 1, format(TEXTS.over_ascii.format, length, MAX_ASCII)) end
   if crs > 1 then warnings[#warnings + 1] = format(TEXTS.extra_cr.format, crs) end
   if lower then warnings[#warnings + 1] = TEXT.lower_case_hex end
   if #warnings > 0 then frame.warnings = warnings end
@@ -276,6 +278,29 @@ local function ascii_cut_answer(s, b, i, n)
   local characters = 1 + 2 * (length - 1) + 2 -- ':', the hex pairs of the ADU and the LRC, CR LF
   if n - i < characters and length <= MAX_ADU then return cut_reason(kind, n - i, characters) end
   return nil
+end
+
+-- Where a line from i longer than MAX_ASCII ends when its header gives its length (an RTU frame's over MAX_ADU, up
+-- to MAX_COUNTED) and it is that frame: hex pairs, CR LF there, its LRC good (ascii.py _long_line). Its length, 0
+-- (not one: noise as before) or NEED (its bytes have not all come).
+local function long_line(s, b, i, n, final)
+  local head = hex_pairs(b, i + 1, MAX_ADU) -- (MAX_ASCII bytes have come, no LF among them)
+  if head == nil then return 0 end
+  local list = interpretations(s, head[0], head[1], head, 0, MAX_ADU)
+  for index = 1, #list do
+    local length, is_scan = list[index][2](head, 0, MAX_ADU)
+    if not is_scan and length > MAX_ADU and length <= MAX_COUNTED then
+      local characters = 1 + 2 * (length - 1) + 2 -- (':', the ADU's hex pairs and the LRC's, CR LF)
+      for k = i + MAX_ASCII, math.min(n, i + characters - 2) - 1 do
+        if not HEX[b[k]] then return 0 end
+      end
+      if n - i < characters then return final and 0 or NEED end
+      if b[i + characters - 2] ~= CR or b[i + characters - 1] ~= LF then return 0 end
+      local bin = hex_pairs(b, i + 1, length - 1)
+      return lrc(bin, length - 2) == bin[length - 2] and characters or 0
+    end
+  end
+  return 0
 end
 
 local function run_ascii(s, final, items)
@@ -314,7 +339,9 @@ local function run_ascii(s, final, items)
           if stop + 1 < n and b[stop + 1] == CR then length = length + 1 end
         end
       elseif n - i >= MAX_ASCII then
-        length, reason = MAX_ASCII, format(TEXTS.no_line_end.format, MAX_ASCII)
+        length = long_line(s, b, i, n, final)
+        if length == NEED then break end
+        if length == 0 then length, reason = MAX_ASCII, format(TEXTS.no_line_end.format, MAX_ASCII) end
       elseif final and n - i > 2 and (b[n - 2] == CR or b[n - 1] == CR) then
         -- (the line's CR, its LF lost or another byte in its place: a line, as before a ':')
         length, at_end = n - i, true

@@ -2,6 +2,7 @@
 -- Mirrors dissector/framing/rtu.py, dissector/framing/reach.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
+local MAX_COUNTED = FRAMING.max_counted -- (a length rule's frame over MAX_ADU: a good CRC only, warned: rules.py)
 
 -- Does a layout at i check out and end where its record does (a code without a length rule: its CRC checks at
 -- the record's end)? The source says a frame ends there: a glitch-byte reading of b[i] before a longer frame
@@ -23,7 +24,7 @@ local function ends_record(s, b, i, n)
       if stop == nil then holds = math.min(holds, n + 1) end
       length = stop ~= nil and stop - i >= length and stop - i or 0
     end
-    if length >= MIN_ADU and length <= MAX_ADU then
+    if length >= MIN_ADU and length <= (is_scan and MAX_ADU or MAX_COUNTED) then
       if i + length >= n then holds = math.min(holds, i + length > n and i + length or n + 1) end
       if i + length <= n and boundary_at(s, i + length) and crc_ok_at(b, i, length) then return true, holds end
     end
@@ -113,7 +114,7 @@ local function frame_at(s, b, i, n, final, scan)
       if final then return false end
       -- (bytes that would swallow a record that is a frame: none, not waited for)
       if not crosses_framed_record(s, b, i, length, n) then return nil end
-    elseif not is_scan and length >= MIN_ADU and length <= MAX_ADU then
+    elseif not is_scan and length >= MIN_ADU and length <= MAX_COUNTED then
       if i + length > n then
         if not final and not crosses_framed_record(s, b, i, length, n) then return nil end
       elseif crc_ok_at(b, i, length) then
@@ -313,7 +314,7 @@ local function match(s, b, i, n, final)
   for index = 1, #list do
     local kind = list[index][1]
     local length, is_scan, declared = list[index][2](b, i, n)
-    local sized = not is_scan and length >= MIN_ADU and length <= MAX_ADU
+    local sized = not is_scan and length >= MIN_ADU and length <= MAX_COUNTED
     if not is_scan and (length == NEED or (sized and i + length > n)) then
       -- (its bytes have not all come; not waited for if they would swallow a record that is a frame)
       if not final and not crosses_framed_record(s, b, i, length, n) then
@@ -322,7 +323,7 @@ local function match(s, b, i, n, final)
     elseif sized then
       if crc_ok_at(b, i, length) then
         valid = added(valid, { kind, length })
-      elseif not counts_nothing(b, i, kind, length) then
+      elseif length <= MAX_ADU and not counts_nothing(b, i, kind, length) then -- (over it: a good CRC only)
         damaged = added(damaged, { kind, length })
       end
     end
@@ -402,6 +403,7 @@ local function rtu_frame(b, i, offset, time, kind, length, crc_ok)
     number = 0, record = 0, at = 0, -- (set by take_items: in the constructor, the hash is made at its size)
     -- (and the keys decoding adds: a table that outgrows its hash is rebuilt, each key inserted again)
     fields = nil, start = nil, quantity = nil, registers = nil, bits = nil, request = nil, response = nil,
+    warnings = length > MAX_ADU and { say("over_adu", { length = length, limit = MAX_ADU }) } or nil, -- (match's)
   }
 end
 
