@@ -317,14 +317,24 @@ def _hex_preview(data: bytes) -> str:
     return f"{data[:MAX_DATA_BYTES].hex()}… (+{count_text(len(data) - MAX_DATA_BYTES, 'byte')})"
 
 
+def mei_name(mei_type: int) -> str:
+    """`Read Device Identification`, `MEI 9`: an FC43 frame's MEI type as the summary names it."""
+    return SPEC.mei_types.get(mei_type, f"MEI {mei_type}")
+
+
+def device_id_request_text(read_code: int, object_id: int) -> str:
+    """`basic, from object 0`: what an FC43/14 request asks (its summary's, --stats' poll row's)."""
+    return f"{SPEC.device_id_codes.get(read_code, str(read_code))}, from object {object_id}"
+
+
 def _mei(frame: Frame, request: bool) -> str:
     fields = frame.fields
-    mei = SPEC.mei_types.get(fields.mei_type, f"MEI {fields.mei_type}")
+    mei = mei_name(fields.mei_type)
     if fields.mei_type != 14:
         return mei
-    code = SPEC.device_id_codes.get(fields.body.read_code, str(fields.body.read_code))
     if request:
-        return f"{mei}, {code}, from object {fields.body.object_id}"
+        return f"{mei}, {device_id_request_text(fields.body.read_code, fields.body.object_id)}"
+    code = SPEC.device_id_codes.get(fields.body.read_code, str(fields.body.read_code))
     objects = "".join(f" {obj.name}={_object_value(obj)}" for obj in frame.objects or [])
     # (More Follows FF: the server sends the rest from the next object id on, 6.21)
     more = f" (more follows from object {fields.body.next_object_id})" if fields.body.more_follows == 0xFF else ""
