@@ -327,6 +327,11 @@ def device_id_request_text(read_code: int, object_id: int) -> str:
     return f"{SPEC.device_id_codes.get(read_code, str(read_code))}, from object {object_id}"
 
 
+def subfunction_text(sub: int, name: str | None = None) -> str:
+    """`0Bh Return Bus Message Count`: an FC8 sub-function as the summary writes it (`name`: the profile's)."""
+    return f"{sub:02X}h {name or SPEC.diagnostics.get(sub, UNKNOWN_SUBFUNCTION)}"
+
+
 def _mei(frame: Frame, request: bool) -> str:
     fields = frame.fields
     mei = mei_name(fields.mei_type)

@@ -33,7 +33,7 @@ from typing import Any
 
 from dissector.model import Frame
 from dissector.protocol.table import FUNCTIONS, write_windows
-from dissector.render.describe import device_id_request_text, mei_name, plain_span
+from dissector.render.describe import device_id_request_text, mei_name, plain_span, subfunction_text
 from dissector.render.stats_store import MAX_KEYS, TALLY_INTERVALS, Coarse
 
 _WRITE_WINDOWS = write_windows()  # requests that write a window of their own (FC23): part of the key
@@ -125,7 +125,8 @@ class PollCycle:
             if poll.count < MIN_REPEATS:
                 continue
             mei = key[1] in _MEI and len(key) > 2  # (its MEI type, read code, object id: no addresses)
-            window = () if mei else key
+            diagnostic = len(key) == 3 and not mei  # (FC8's sub-function: no address either)
+            window = () if mei or diagnostic else key
             row: dict[str, Any] = {
                 "slave": key[0],
                 "function": key[1],
@@ -142,6 +143,8 @@ class PollCycle:
             }
             if mei:
                 row.update(zip(("mei_type", "read_code", "object_id"), key[2:]))
+            if diagnostic:
+                row["subfunction"] = key[2]
             if timed_rows is None or len(rows) < timed_rows:
                 row.update(_timing(poll.intervals))
             row["misses"] = row["skipped"] + poll.failed
@@ -196,6 +199,8 @@ def describe_key(row: dict[str, Any]) -> str:
         return device_id_request_text(row["read_code"], row["object_id"])
     if row.get("mei_type") is not None:
         return mei_name(row["mei_type"])
+    if row.get("subfunction") is not None:  # (as the summary names it: `0Bh Return Bus Message Count`)
+        return subfunction_text(row["subfunction"])
     if start is None:
         return ""
     text = _span(start, quantity)

@@ -46,3 +46,27 @@ def test_poll_rows(tmp_path: Path, pure: bool, monkeypatch: pytest.MonkeyPatch) 
     rows = json.loads(out)["poll_cycle"]
     assert [(row["mei_type"], row["read_code"], row["object_id"], row["start"], row["count"]) for row in rows] == [
         (14, code, obj, None, 3) for code, obj in ASKED]
+
+
+@pytest.mark.parametrize("pure", [False, True])
+def test_diagnostics_rows_name_their_subfunction(tmp_path: Path, pure: bool, monkeypatch: pytest.MonkeyPatch) -> None:
+    # FC8's poll rows showed the sub-function as an address in decimal (`11`, --json "start": 11): now as
+    # the summary names it, and --json's "subfunction".
+    use_engine(monkeypatch, pure)
+    records, time = [], 1000.0
+    for cycle in range(3):
+        for sub in (0x0B, 0x0C):
+            records += [(rtu(f"01 08 00{sub:02X} 0000"), time), (rtu(f"01 08 00{sub:02X} 0005"), time + 0.01)]
+            time += 0.1
+    pcap = write_pcap(tmp_path / "fc8.pcap", records)
+    status, out, err = run_cli(["--stats", str(pcap)])
+    assert (status, err) == (0, "")
+    lines = out.splitlines()
+    at = lines.index("Poll cycle (requests repeated 3 times or more)")
+    assert lines[at + 3: at + 5] == [
+        "    1  8 Diagnostics  0Bh Return Bus Message Count                  3   200.0     0.0       0",
+        "    1  8 Diagnostics  0Ch Return Bus Communication Error Count      3   200.0     0.0       0",
+    ]
+    status, out, err = run_cli(["--stats", "--json", str(pcap)])
+    rows = json.loads(out)["poll_cycle"]
+    assert [(row["subfunction"], row["start"]) for row in rows] == [(11, None), (12, None)]
