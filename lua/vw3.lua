@@ -1467,6 +1467,13 @@ local DATA = {
         ["plain"] = true,
       },
       {
+        ["abbr"] = "vw3.write_span_label",
+        ["ftype"] = "string",
+        ["title"] = "Written addresses as shown",
+        ["help"] = "the addresses written as shown (PLC style: FC23's written window)",
+        ["plain"] = true,
+      },
+      {
         ["abbr"] = "vw3.profile",
         ["ftype"] = "string",
         ["title"] = "Device profile",
@@ -3544,12 +3551,14 @@ local function has_rare(f)
   return f.registers and (f.registers.status or f.registers.plain) or f.warnings or f.notes or f.unanswered or
     f.broadcast or f.no_request or f.malformed or f.function_text or f.exception_code or
     f.exception_meaning or f.subfunction or f.subfunction_text or f.objects or f.ascii or f.raw or
-    f.inferred or f.profile_choice or f.profile_said or f.provisional or f.paired_notes or f.server_id_size
+    f.inferred or f.profile_choice or f.profile_said or f.provisional or f.paired_notes or f.server_id_size or
+    f.write_span_label
 end
 DATA.pack = { encode = encode, put = put, expand = expand, has_rare = has_rare, time = 6,
   rare = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
     "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "ascii", "raw",
-    "inferred", "profile_choice", "profile_said", "provisional", "paired_notes", "server_id_size" } }
+    "inferred", "profile_choice", "profile_said", "provisional", "paired_notes", "server_id_size",
+    "write_span_label" } }
 end
 do
 local PARTS, PARSERS = {}, {} -- (a layout's reader calls its parts' by name)
@@ -4200,7 +4209,7 @@ function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_te
   end
   form.read_write = function(f, b, base, last, st, device)
     return "read " .. span_text(f) .. ", write "
-      .. span_text({ start = b[base + 6] * 256 + b[base + 7], quantity = b[base + 8] * 256 + b[base + 9] })
+      .. span_text({ start = b[base + 6] * 256 + b[base + 7], quantity = b[base + 8] * 256 + b[base + 9], span_label = f.write_span_label })
   end
   form.pointer = function(f, b, base, last, st, device)
     return "pointer " .. DECIMAL[b[base + 2] * 256 + b[base + 3]]
@@ -8577,12 +8586,23 @@ local function diagnostics_note(f, device, b)
   note(f, text)
 end
 
+-- naming.window_label: `40501..40504`, one label for a quantity of 0, 1 or none; the last address past 65535
+-- as asked.
+local function window_label(labels, start, quantity)
+  if quantity == nil or quantity <= 1 then return labels[start] end
+  return labels[start] .. ".." .. labels[start + quantity - 1]
+end
+
 local function span_label(f, device)
-  -- `40501..40504` for a PLC-style device, so requests without registers show 4X numbers too.
+  -- `40501..40504` for a PLC-style device, so requests without registers show 4X numbers too; FC23's request
+  -- its written window too (annotator._span_label: `write 40006 (0)` where it writes none).
   local labels = PLC_LABELS[plc_base(device, f)]
-  local quantity, first = f.quantity or 0, labels[f.start] -- (a quantity of 0 or none: one address)
-  -- (the last address past 65535 as asked, as annotator._span_label)
-  f.span_label = quantity <= 1 and first or first .. ".." .. labels[f.start + quantity - 1]
+  f.span_label = window_label(labels, f.start, f.quantity)
+  local rule, fields = LIFT_OF[REQUEST][f.fn], f.fields
+  if f.kind == REQUEST and rule ~= nil and rule.write_window ~= nil and fields ~= nil then
+    local window = rule.write_window
+    f.write_span_label = window_label(labels, fields[window[1]], fields[window[2]])
+  end
 end
 lane.span_label = span_label
 M.check_request, M.check_writes, M.diagnostics_note = check_request, check_writes, diagnostics_note
@@ -10809,6 +10829,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     end
     if f.quantity ~= nil then add_window(t, tvb, f, pf.quantity, "quantity", f.quantity) end
     if f.span_label ~= nil then t:add(pf.span_label, whole, f.span_label):set_generated() end
+    if f.write_span_label ~= nil then t:add(pf.write_span_label, whole, f.write_span_label):set_generated() end
     if f.subfunction ~= nil then t:add(pf.subfunction, data_range, f.subfunction) end
     if f.kind ~= EXCEPTION then add_pdu(t, tvb, f, crc_at) end
     if f.subfunction ~= nil then

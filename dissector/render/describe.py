@@ -234,6 +234,14 @@ def _plain_span(frame: Frame) -> str:
     return span_text(frame) if frame.span_label is not None else plain_span(frame.start, frame.quantity)
 
 
+def _write_span(frame: Frame, start: int, quantity: int) -> str:
+    """FC23's written window as its read window is shown: PLC style by its label (annotator), else as sent."""
+    label = frame.write_span_label
+    if label is None:
+        return plain_span(start, quantity)
+    return label if quantity == 1 else f"{label} ({quantity})"
+
+
 # What each step of TEXT_FORMS writes (the C engine's STEP_*): of the frame, or of the field it names.
 _OF_FRAME: dict[str, Callable[[Frame], str]] = {
     "unspace": lambda frame: "", "span": span_text, "label": span_text, "plain_span": _plain_span,
@@ -256,8 +264,8 @@ def _step(step: tuple[str | int, ...]) -> Callable[[Frame], str]:
         return lambda frame: of(frame, frame.fields[args[0]])
     if what == "hex":
         return lambda frame: f"{frame.fields[args[0]]:0{args[1]}X}"
-    if what == "write":  # FC23's: its values, or where none are sent its window as sent (`5 (0)`), never nothing
-        return lambda frame: values_text(frame) or plain_span(frame.fields[args[0]], frame.fields[args[1]])
+    if what == "write":  # FC23's: its values, or where none are sent its window (`5 (0)`, `40006 (0)`), never nothing
+        return lambda frame: values_text(frame) or _write_span(frame, frame.fields[args[0]], frame.fields[args[1]])
     if what == "fifo":  # the values sent (the first MAX_FIFO_VALUES), whatever their count says
         return lambda frame: _fifo(frame.fields[args[1]])
     raise ValueError(f"describe: no step {what!r}")
