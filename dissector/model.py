@@ -293,6 +293,7 @@ class Frame:
     exception_text: str | None = None  # e.g. ATV71 exception 6 "write refused: ... Forced local"
     subfunction_text: str | None = None  # e.g. VW3 A3 303 FC8 0Fh "broadcast messages received"
     span_label: str | None = None  # the start..end addresses as displayed (4X style), when not the numbers
+    write_span_label: str | None = None  # FC23's written window so (its own beside the read one, span_label)
     # Profile `auto`: the choice (devices.selection.ProfileChoice) that gave this frame's slave the device
     # annotating it, with its reason; None for forced profiles and slaves without evidence.
     profile_choice: Any = None

@@ -276,7 +276,7 @@ def _need_utf8(path: str, message: str) -> None:
 def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog: str) -> int:
     """The --parquet run: one line per capture written, errors one line each; exit 2 if any failed."""
     from dissector.app.options import baud_given, shown
-    from dissector.export.parquet import need_pyarrow, remove_empty_tables
+    from dissector.export.parquet import need_pyarrow, remove_empty_tables, rows_text
 
     need_pyarrow()
     if not args.files:
@@ -316,10 +316,7 @@ def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog:
             failed += 1
             stderr.write(f"{prog}: {shown(result.error)}\n")  # type: ignore[attr-defined]
             return
-        rows = result.rows
-        stdout.write(  # type: ignore[attr-defined]
-            f"{shown(result.capture)}: {rows['frames']} frames, {rows['registers']} registers, {rows['events']} events\n"
-        )
+        stdout.write(f"{shown(result.capture)}: {rows_text(result.rows)}\n")  # type: ignore[attr-defined]
 
     run_captures(captures, settings, args.jobs, args.scheduler, report)
     for warning in said:

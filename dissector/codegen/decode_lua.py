@@ -205,8 +205,10 @@ def lifter(rule: dict[str, Any], limit: str | None, shape: list[dict[str, Any]],
         out.append(f"local many = {quantity}")
     elif quantity == REQUEST_QUANTITY:
         out.append("local many = request and request.quantity")
-        if rule["unpaired_unit"]:
-            unit = rule["unpaired_unit"]
+        unit = rule["unpaired_unit"]
+        if unit == 0:  # (bits: a byte count of 0 alone says the quantity, decode/fields.py)
+            out += _if("many == nil and fields.byte_count == 0", "many = 0")
+        elif unit:
             out += _if(f"many == nil and fields.byte_count % {unit} == 0", f"many = floor(fields.byte_count / {unit})")
     else:
         out.append("local many = " + (field(quantity) if quantity else "nil"))

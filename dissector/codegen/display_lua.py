@@ -70,8 +70,9 @@ def form_body(form: str, steps: list[Any], places: dict[str, tuple[int, int | No
         what = step[0]
         if what in ("label", "span", "plain_span"):  # (describe.span_text: the window as named, PLC style too)
             parts.append("span_text(f)")
-        elif what == "write":  # (FC23's write window as sent, describe.plain_span; its values left out)
-            parts.append(f"span_text({{ start = {value(step[1])}, quantity = {value(step[2])} }})")
+        elif what == "write":  # (FC23's write window, describe._write_span: PLC style its label; its values left out)
+            parts.append(f"span_text({{ start = {value(step[1])}, quantity = {value(step[2])}, "
+                         f"span_label = f.write_span_label }})")
         elif what == "dec":
             parts.append(f"DECIMAL[{value(step[1])}]")
         elif what == "hex":

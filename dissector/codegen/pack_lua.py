@@ -24,7 +24,8 @@ RUNS, APART = {"registers", "bits"}, {"link", "request_time"}
 # The keys a frame holds rarely: kept in a table in its last slot (with its span label).
 RARE = ("warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
         "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "ascii",
-        "raw", "inferred", "profile_choice", "profile_said", "provisional", "paired_notes", "server_id_size")
+        "raw", "inferred", "profile_choice", "profile_said", "provisional", "paired_notes", "server_id_size",
+        "write_span_label")
 # (a key's code put and got, X its name)
 PUT = {"+": "if X == nil then X = 0 else X = X + 1 end", "?": "", "": ""}
 GOT = {"+": "if X == 0 then X = nil else X = X - 1 end", "?": "if X == false then X = nil end", "": ""}

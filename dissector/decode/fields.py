@@ -206,9 +206,11 @@ def lifter(rule: Lift, limit: str | None, request_of: RequestOf) -> Handler:
             quantity = quantity_const
         elif quantity_from_request:
             quantity = None if request is None else request.quantity
-            if quantity is None and unpaired:
+            if quantity is None and unpaired is not None:
                 given = fields["byte_count"]
-                if given % unpaired == 0:
+                if unpaired == 0:  # bits: no byte, no bit; a byte holds 1 to 8 of them
+                    quantity = 0 if given == 0 else None
+                elif given % unpaired == 0:
                     quantity = given // unpaired
         else:
             quantity = None if quantity_field is None else fields[quantity_field]

@@ -23,7 +23,8 @@ from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
 from dissector.devices.memory import (
     readable_again, remember_answered, remember_mask, remember_writes, unreadable, unreadable_status,
 )
-from dissector.devices.naming import name_from_map, name_register, name_second_alone, name_wide, plc_label, wide_before
+from dissector.devices.naming import (name_from_map, name_register, name_second_alone, name_wide, plc_label,
+                                      wide_before, window_label)
 from dissector.devices.objects import check_objects
 from dissector.devices.profiles import HOLDING_REGISTERS, Profile
 from dissector.devices.selection import ProfileChoice, Selector
@@ -41,6 +42,7 @@ _BY_ECHO = table.confirmed_registers(Confirm.ECHO)
 _BY_ANSWER = table.confirmed_registers(Confirm.ANSWER)
 _HAS_LABEL = "label" in Register.__dataclass_fields__
 _REQUEST = Kind.REQUEST
+_WRITE_WINDOWS = table.write_windows()  # (FC23: a written window of its own, labelled too)
 _RESPONSE = Kind.RESPONSE
 _EXCEPTION = Kind.EXCEPTION
 
@@ -552,22 +554,15 @@ def _labels(labels: dict[int, str], base: int, addresses: Sequence[int]) -> list
 
 
 def _span_label(frame: Frame, device: Device) -> None:
-    """`40501..40504` for a PLC-style device, so requests without registers show 4X numbers too."""
+    """`40501..40504` for a PLC-style device, so requests without registers show 4X numbers too; FC23's
+    request its written window as well (`40006` where it writes none: describe's `write 40006 (0)`)."""
     base = device.base(frame.function)
     labels = device.labels.setdefault(base, {})  # the cache _annotate fills too
-    start: int = frame.start  # type: ignore[assignment]
-    quantity = frame.quantity or 1
-    first = labels.get(start)
-    if first is None:
-        first = labels[start] = plc_label(base, start)
-    if quantity == 1:
-        frame.span_label = first
-        return
-    end = start + quantity - 1  # past 65535 as asked, as describe.span_text and the warning `span` show it
-    last = labels.get(end)
-    if last is None:
-        last = labels[end] = plc_label(base, end)
-    frame.span_label = f"{first}..{last}"
+    frame.span_label = window_label(labels, base, frame.start, frame.quantity)  # type: ignore[arg-type]
+    window = _WRITE_WINDOWS.get(frame.function)
+    if window is not None and frame.kind is _REQUEST and frame.fields is not None:
+        fields = frame.fields
+        frame.write_span_label = window_label(labels, base, fields[window[0]], fields[window[1]])
 
 
 def _depend(frame: Frame, device: Device, address: int) -> RegisterDef:

@@ -21,6 +21,21 @@ def plc_label(base: int, address: int) -> str:
     return f"{number:0{digits}d}"
 
 
+def window_label(labels: dict[int, str], base: int, start: int, quantity: int | None) -> str:
+    """`40501..40504`, one label for a quantity of 0 or 1; past 65535 as asked, as describe.span_text and
+    the warning `span` show it."""
+    first = labels.get(start)
+    if first is None:
+        first = labels[start] = plc_label(base, start)
+    if not quantity or quantity == 1:
+        return first
+    end = start + quantity - 1
+    last = labels.get(end)
+    if last is None:
+        last = labels[end] = plc_label(base, end)
+    return f"{first}..{last}"
+
+
 def address_name(row: RegisterDef | None, address: int, label: str | None = None) -> str:
     """`CHCF (8401)` for a mapped register, `8400` otherwise (`label`: the address as the screen shows it)."""
     shown = label if label is not None else str(address)

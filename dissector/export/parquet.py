@@ -23,12 +23,19 @@ from typing import Any
 from dissector.errors import UsageError
 from dissector.model import Item, Stamp
 from dissector.render.history import UNREADABLE_STATUSES
+from dissector.render.describe import count_text
 from dissector.render.jsonout import item_to_dict
 from dissector.render.registers import register_rows
 from dissector.render.stats_store import register_table
 
 ROWS_PER_GROUP = 1 << 16  # rows kept before a row group is written: memory stays flat
 TABLES = ("frames", "registers", "events")
+NOUNS = ("frame", "register", "event")  # (each table's row, for the line said of a capture)
+
+
+def rows_text(rows: dict[str, int]) -> str:
+    """`12 frames, 1 register, 0 events`: the rows written to each table, singular for one (describe.count_text)."""
+    return ", ".join(count_text(rows[table], noun) for table, noun in zip(TABLES, NOUNS))
 
 
 def need_pyarrow() -> Any:

@@ -234,6 +234,14 @@ def _plain_span(frame: Frame) -> str:
     return span_text(frame) if frame.span_label is not None else plain_span(frame.start, frame.quantity)
 
 
+def _write_span(frame: Frame, start: int, quantity: int) -> str:
+    """FC23's written window as its read window is shown: PLC style by its label (annotator), else as sent."""
+    label = frame.write_span_label
+    if label is None:
+        return plain_span(start, quantity)
+    return label if quantity == 1 else f"{label} ({quantity})"
+
+
 # What each step of TEXT_FORMS writes (the C engine's STEP_*): of the frame, or of the field it names.
 _OF_FRAME: dict[str, Callable[[Frame], str]] = {
     "unspace": lambda frame: "", "span": span_text, "label": span_text, "plain_span": _plain_span,
@@ -256,8 +264,8 @@ def _step(step: tuple[str | int, ...]) -> Callable[[Frame], str]:
         return lambda frame: of(frame, frame.fields[args[0]])
     if what == "hex":
         return lambda frame: f"{frame.fields[args[0]]:0{args[1]}X}"
-    if what == "write":  # FC23's: its values, or where none are sent its window as sent (`5 (0)`), never nothing
-        return lambda frame: values_text(frame) or plain_span(frame.fields[args[0]], frame.fields[args[1]])
+    if what == "write":  # FC23's: its values, or where none are sent its window (`5 (0)`, `40006 (0)`), never nothing
+        return lambda frame: values_text(frame) or _write_span(frame, frame.fields[args[0]], frame.fields[args[1]])
     if what == "fifo":  # the values sent (the first MAX_FIFO_VALUES), whatever their count says
         return lambda frame: _fifo(frame.fields[args[1]])
     raise ValueError(f"describe: no step {what!r}")
@@ -317,14 +325,29 @@ def _hex_preview(data: bytes) -> str:
     return f"{data[:MAX_DATA_BYTES].hex()}… (+{count_text(len(data) - MAX_DATA_BYTES, 'byte')})"
 
 
+def mei_name(mei_type: int) -> str:
+    """`Read Device Identification`, `MEI 9`: an FC43 frame's MEI type as the summary names it."""
+    return SPEC.mei_types.get(mei_type, f"MEI {mei_type}")
+
+
+def device_id_request_text(read_code: int, object_id: int) -> str:
+    """`basic, from object 0`: what an FC43/14 request asks (its summary's, --stats' poll row's)."""
+    return f"{SPEC.device_id_codes.get(read_code, str(read_code))}, from object {object_id}"
+
+
+def subfunction_text(sub: int, name: str | None = None) -> str:
+    """`0Bh Return Bus Message Count`: an FC8 sub-function as the summary writes it (`name`: the profile's)."""
+    return f"{sub:02X}h {name or SPEC.diagnostics.get(sub, UNKNOWN_SUBFUNCTION)}"
+
+
 def _mei(frame: Frame, request: bool) -> str:
     fields = frame.fields
-    mei = SPEC.mei_types.get(fields.mei_type, f"MEI {fields.mei_type}")
+    mei = mei_name(fields.mei_type)
     if fields.mei_type != 14:
         return mei
-    code = SPEC.device_id_codes.get(fields.body.read_code, str(fields.body.read_code))
     if request:
-        return f"{mei}, {code}, from object {fields.body.object_id}"
+        return f"{mei}, {device_id_request_text(fields.body.read_code, fields.body.object_id)}"
+    code = SPEC.device_id_codes.get(fields.body.read_code, str(fields.body.read_code))
     objects = "".join(f" {obj.name}={_object_value(obj)}" for obj in frame.objects or [])
     # (More Follows FF: the server sends the rest from the next object id on, 6.21)
     more = f" (more follows from object {fields.body.next_object_id})" if fields.body.more_follows == 0xFF else ""

@@ -422,6 +422,8 @@ def _body_lines(detail: _Detail, frame: Frame) -> None:
     rtu = frame.mode == "rtu"
     if frame.span_label is not None:  # --address-style plc: the span as the summary shows it
         add(f"        PLC references{' (read)' if frame.function == 23 else ''}: {frame.span_label}")
+    if frame.write_span_label is not None:  # (FC23's written window)
+        add(f"        PLC references (write): {frame.write_span_label}")
     registers = frame.registers
     if not registers and frame.function in MASKS:  # (FC22's register, as --json lists it and the plugin shows it)
         mask = mask_register(frame)

@@ -112,6 +112,8 @@ def _values_middle(frame: Frame, registers: RegisterList) -> str | None:
         _head_lines(part, frame)
         if span is not None:  # as _body_lines writes it
             part.texts.append(f"        PLC references{' (read)' if frame.function == 23 else ''}: {span}")
+        if frame.write_span_label is not None:
+            part.texts.append(f"        PLC references (write): {frame.write_span_label}")
         kept = [None] * (2 * len(values) + 2)
         kept[0] = "\n".join(part.texts)
         kept[1:-1:2] = _LINE_ADDRESS_HEADS(registers.addresses) if labels is None else _LINE_LABEL_HEADS(labels)

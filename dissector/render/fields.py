@@ -48,7 +48,8 @@ from dissector.protocol.printable import printable
 from dissector.render.timefmt import TIME_FIELDS
 
 # Keys of the NDJSON object the filter does not list (kept in step with render.jsonout).
-EXTRA_FRAME_KEYS = ("span_label", "exception_meaning", "objects", "fields", "bits", "registers", "file")
+EXTRA_FRAME_KEYS = ("span_label", "write_span_label", "exception_meaning", "objects", "fields", "bits", "registers",
+                    "file")
 SWITCHES = ("y", "n")
 QUOTES = {"d": '"', "s": "'", "n": ""}
 OCCURRENCES = ("f", "l", "a")

@@ -32,8 +32,8 @@ Syntax, close to Wireshark's:
 Field names are the keys `-T fields` takes (`-Y help` lists them). Frame fields: frame, kind, offset,
 length, time, raw, mode, slave, function, function_name, crc_ok, crc, crc_expected, broadcast, start,
 quantity, subfunction, subfunction_name, exception_code (alias: exception), exception_name,
-exception_meaning, span_label, request_frame, response_frame, response_time, unanswered, reason,
-warnings, notes, file; `fields.KEY` for a key of the PDU as the grammar parsed it (`fields.start`,
+exception_meaning, span_label, write_span_label, request_frame, response_frame, response_time, unanswered,
+reason, warnings, notes, file; `fields.KEY` for a key of the PDU as the grammar parsed it (`fields.start`,
 `fields.byte_count`; fields.data bytes, as raw; fields.values a repeated number); `registers`, `bits`,
 `objects`, `fields` alone test presence.
 `time` is the JSON's (seconds since the epoch), compared with a number or a date and time in quotes as

@@ -82,6 +82,8 @@ def _head(frame: Frame) -> dict[str, Any]:
         out["start"] = frame.start
     if frame.span_label is not None:
         out["span_label"] = frame.span_label
+    if frame.write_span_label is not None:
+        out["write_span_label"] = frame.write_span_label
     if frame.quantity is not None:
         out["quantity"] = frame.quantity
     if frame.subfunction is not None:
@@ -252,6 +254,8 @@ def _head_json(frame: Frame) -> str:
         text += f', "start": {start}' if type(start) is int else f', "start": {_scalar(start)}'
     if frame.span_label is not None:
         text += f', "span_label": {_json_string(frame.span_label)}'
+    if frame.write_span_label is not None:
+        text += f', "write_span_label": {_json_string(frame.write_span_label)}'
     quantity = frame.quantity
     if quantity is not None:
         text += f', "quantity": {quantity}' if type(quantity) is int else f', "quantity": {_scalar(quantity)}'

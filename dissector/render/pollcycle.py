@@ -3,8 +3,10 @@ jitter and misses. Shared by `--stats` and `--report`.
 
 A request's key is its bytes without the check (the same slave, function, addresses and, for a
 write, the same values would be too strict: a PLC writes a changing setpoint in a fixed slot), so
-the key is (slave, function, start, quantity) and for FC23 the write window too. Only good requests
-count; broadcasts are cycles as well.
+the key is (slave, function, start, quantity) and for FC23 the write window too; FC8's its sub-function;
+FC43's its MEI type, and for Read Device Identification (14) its read device id code and object id (a
+basic and an extended identification are two polls). Only good requests count; broadcasts are cycles
+as well.
 
 Rules (the table captions say the same):
 - period: the median interval between consecutive occurrences (timestamps needed);
@@ -30,11 +32,13 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from dissector.model import Frame
-from dissector.protocol.table import write_windows
-from dissector.render.describe import plain_span
+from dissector.protocol.table import FUNCTIONS, write_windows
+from dissector.render.describe import device_id_request_text, mei_name, plain_span, subfunction_text
 from dissector.render.stats_store import MAX_KEYS, TALLY_INTERVALS, Coarse
 
 _WRITE_WINDOWS = write_windows()  # requests that write a window of their own (FC23): part of the key
+_MEI = frozenset(entry.code for entry in FUNCTIONS if entry.text == "mei")  # (FC43: keyed by what it reads)
+DEVICE_ID = 14  # the MEI type whose read code and object id say what is read (Application Protocol 6.21)
 
 MIN_REPEATS = 3  # fewer occurrences are not a cycle
 STEP = 1e-4  # interval histogram resolution: 100 us (a few thousand entries at most)
@@ -120,13 +124,16 @@ class PollCycle:
         for _order, (key, poll) in ordered:
             if poll.count < MIN_REPEATS:
                 continue
+            mei = key[1] in _MEI and len(key) > 2  # (its MEI type, read code, object id: no addresses)
+            diagnostic = len(key) == 3 and not mei  # (FC8's sub-function: no address either)
+            window = () if mei or diagnostic else key
             row: dict[str, Any] = {
                 "slave": key[0],
                 "function": key[1],
-                "start": key[2] if len(key) > 2 else None,
-                "quantity": key[3] if len(key) > 3 else None,
-                "write_start": key[4] if len(key) > 4 else None,
-                "write_quantity": key[5] if len(key) > 5 else None,
+                "start": window[2] if len(window) > 2 else None,
+                "quantity": window[3] if len(window) > 3 else None,
+                "write_start": window[4] if len(window) > 4 else None,
+                "write_quantity": window[5] if len(window) > 5 else None,
                 "count": poll.count,
                 "no_answer": poll.failed,
                 "period": None,
@@ -134,6 +141,10 @@ class PollCycle:
                 "jitter_sd": None,
                 "skipped": 0,
             }
+            if mei:
+                row.update(zip(("mei_type", "read_code", "object_id"), key[2:]))
+            if diagnostic:
+                row["subfunction"] = key[2]
             if timed_rows is None or len(rows) < timed_rows:
                 row.update(_timing(poll.intervals))
             row["misses"] = row["skipped"] + poll.failed
@@ -153,6 +164,11 @@ def request_key(frame: Frame) -> Key:
         return (frame.slave, frame.function, frame.start, frame.quantity if frame.quantity is not None else 1)
     if frame.subfunction is not None:
         return (frame.slave, frame.function, frame.subfunction)
+    if frame.function in _MEI and frame.fields is not None:
+        fields = frame.fields
+        if fields.mei_type == DEVICE_ID:
+            return (frame.slave, frame.function, DEVICE_ID, fields.body.read_code, fields.body.object_id)
+        return (frame.slave, frame.function, fields.mei_type)
     return (frame.slave, frame.function)
 
 
@@ -179,6 +195,12 @@ def _timing(intervals: dict[int, int]) -> dict[str, Any]:
 def describe_key(row: dict[str, Any]) -> str:
     """`3102..3105 (4)`, `read 3201..3202, write 8501..8502`, or '' for a request without addresses."""
     start, quantity = row.get("start"), row.get("quantity")
+    if row.get("read_code") is not None:  # (FC43/14: what it reads, as its summary says it)
+        return device_id_request_text(row["read_code"], row["object_id"])
+    if row.get("mei_type") is not None:
+        return mei_name(row["mei_type"])
+    if row.get("subfunction") is not None:  # (as the summary names it: `0Bh Return Bus Message Count`)
+        return subfunction_text(row["subfunction"])
     if start is None:
         return ""
     text = _span(start, quantity)

@@ -235,11 +235,22 @@ local function diagnostics_note(f, device, b)
   note(f, text)
 end
 
+-- naming.window_label: `40501..40504`, one label for a quantity of 0, 1 or none; the last address past 65535
+-- as asked.
+local function window_label(labels, start, quantity)
+  if quantity == nil or quantity <= 1 then return labels[start] end
+  return labels[start] .. ".." .. labels[start + quantity - 1]
+end
+
 local function span_label(f, device)
-  -- `40501..40504` for a PLC-style device, so requests without registers show 4X numbers too.
+  -- `40501..40504` for a PLC-style device, so requests without registers show 4X numbers too; FC23's request
+  -- its written window too (annotator._span_label: `write 40006 (0)` where it writes none).
   local labels = PLC_LABELS[plc_base(device, f)]
-  local quantity, first = f.quantity or 0, labels[f.start] -- (a quantity of 0 or none: one address)
-  -- (the last address past 65535 as asked, as annotator._span_label)
-  f.span_label = quantity <= 1 and first or first .. ".." .. labels[f.start + quantity - 1]
+  f.span_label = window_label(labels, f.start, f.quantity)
+  local rule, fields = LIFT_OF[REQUEST][f.fn], f.fields
+  if f.kind == REQUEST and rule ~= nil and rule.write_window ~= nil and fields ~= nil then
+    local window = rule.write_window
+    f.write_span_label = window_label(labels, fields[window[1]], fields[window[2]])
+  end
 end
 lane.span_label = span_label

@@ -110,6 +110,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     end
     if f.quantity ~= nil then add_window(t, tvb, f, pf.quantity, "quantity", f.quantity) end
     if f.span_label ~= nil then t:add(pf.span_label, whole, f.span_label):set_generated() end
+    if f.write_span_label ~= nil then t:add(pf.write_span_label, whole, f.write_span_label):set_generated() end
     if f.subfunction ~= nil then t:add(pf.subfunction, data_range, f.subfunction) end
     if f.kind ~= EXCEPTION then add_pdu(t, tvb, f, crc_at) end
     if f.subfunction ~= nil then

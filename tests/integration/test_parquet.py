@@ -191,7 +191,7 @@ def test_ring_buffer_files_are_one_capture(tmp_path: Path) -> None:
     files = sorted(ring.iterdir())
     assert len(files) >= 2 and all(re.fullmatch(r"bus_\d{5}_\d{14}\.pcap", path.name) for path in files)
     result = _cli("--parquet", str(tmp_path / "data"), *map(str, reversed(files)), "--jobs", "2")
-    assert (result.returncode, result.stdout) == (0, f"{ring / 'bus.pcap'}: 104 frames, 181 registers, 1 events\n")
+    assert (result.returncode, result.stdout) == (0, f"{ring / 'bus.pcap'}: 104 frames, 181 registers, 1 event\n")
     _cli("--parquet", str(tmp_path / "whole"), str(source))
     columns = "frame, kind, epoch_us(time), slave, function, request_frame, response_time, raw"
     ringed = _query(f"SELECT {columns} FROM read_parquet('{tmp_path}/data/frames/*.parquet') ORDER BY frame")

@@ -18,7 +18,7 @@ NOTE_EXPERTS = ("vw3.expert.note", "vw3.expert.no_request")
 # tests until the plugin shows it too.
 FRAME_KEYS = frozenset([
     "frame", "kind", "offset", "length", "time", "raw", "mode", "slave", "function", "function_name",
-    "crc_ok", "crc", "crc_expected", "broadcast", "start", "span_label", "quantity", "subfunction",
+    "crc_ok", "crc", "crc_expected", "broadcast", "start", "span_label", "write_span_label", "quantity", "subfunction",
     "subfunction_name", "registers", "bits", "objects", "exception_code", "exception_name",
     "exception_meaning", "request_frame", "response_time", "response_frame", "unanswered", "fields",
     "warnings", "notes", "profile", "profile_reason",
@@ -61,6 +61,7 @@ def python_frame(item: PythonItem, records: dict[int, int]) -> dict[str, Any]:
         "function": data["function"],
         "function_name": data["function_name"],
         "span_label": data.get("span_label"),
+        "write_span_label": data.get("write_span_label"),
         "subfunction_name": data.get("subfunction_name"),
         "exception_name": data.get("exception_name"),
         "exception_meaning": data.get("exception_meaning"),
@@ -117,6 +118,7 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
         "function": _int(fields.get("function")),
         "function_name": fields.get("function_name"),
         "span_label": fields.get("span_label"),
+        "write_span_label": fields.get("write_span_label"),
         "subfunction_name": fields.get("subfunction_name"),
         "exception_name": fields.get("exception_name"),
         "exception_meaning": fields.get("exception_meaning"),

@@ -1,7 +1,7 @@
 """--parquet DIR on a capture in which no frame checks (another format, a line read at the wrong speed, every
 record cut by a snapshot length) says so, as the decode of the same file does (app/inputs.py
 no_frame_text), whichever worker read it. Before (hunt67b), --parquet wrote its noise rows and said nothing:
-`rnd.bin: 1 frames, 0 registers, 1 events`, where `vw3-decode rnd.bin` warns `no valid Modbus RTU frame in
+`rnd.bin: 1 frame, 0 registers, 1 event`, where `vw3-decode rnd.bin` warns `no valid Modbus RTU frame in
 300 bytes ...: not a Modbus capture, or another format or line speed?`."""
 from __future__ import annotations
 
