@@ -39,9 +39,13 @@ class Dissector:
         gaps: GapChecker | None = None,
         live: bool = False,
         recorded: Callable[[], float | None] | None = None,
+        char_time: float | None = None,
     ) -> None:
         self.framer = framer if framer is not None else RtuFramer()
-        self.pairer = Pairer(hold=hold, timeout=timeout)
+        # A request's timeout starts once it is sent: its characters' time at the line's speed (`char_time`:
+        # the framer's line by default; live, the capture thread's framer's).
+        self.pairer = Pairer(hold=hold, timeout=timeout,
+                             char_time=self.framer.timing.char_time if char_time is None else char_time)
         self.annotate = annotate
         self.gaps = gaps
         # A file ends when its last bytes came (a request within its timeout of that: not known whether it

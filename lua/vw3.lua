@@ -5188,6 +5188,12 @@ function lane.line_speed(baud)
 end
 lane.line_speed(TIMING.default_baud)
 
+-- Seconds a frame's characters take on the line at its speed (a request's timeout starts once it is sent:
+-- vw3.pairing's timed_out). A function: the speed is the preference's when it is called.
+local function sent_in(frame)
+  return frame.length * (frame.ascii and ASCII_CHAR_TIME or CHAR_TIME)
+end
+
 -- Record times are integer nanoseconds (show.lua record_ns): a difference in seconds is theirs divided
 -- once, as vw3-decode's Stamps subtract (model.py Stamp.__sub__), so that every comparison and text agrees.
 local NS = 1e9
@@ -5532,8 +5538,8 @@ M.boundary_at, M.cut_reason, M.cut_stream, M.drop_first = boundary_at, cut_reaso
 M.emit, M.expect_after, M.first_above, M.first_after = emit, expect_after, first_above, first_after
 M.flush_noise, M.lane, M.no_frame, M.not_the_answer = flush_noise, lane, no_frame, not_the_answer
 M.part_reason, M.plausible_request, M.record_start = part_reason, plausible_request, record_start
-M.repeats, M.silence_after, M.silent_at_end, M.silent_before = repeats, silence_after, silent_at_end, silent_before
-M.time_at, M.whole_crc_good = time_at, whole_crc_good
+M.repeats, M.sent_in, M.silence_after, M.silent_at_end = repeats, sent_in, silence_after, silent_at_end
+M.silent_before, M.time_at, M.whole_crc_good = silent_before, time_at, whole_crc_good
 end
 
 -- ---- vw3.rtu: lua/src/rtu.lua ----
@@ -6985,7 +6991,7 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer
 local echoed, format, next, note, part_reason, release_run = echoed, format, next, note, part_reason, release_run
-local say, string_of, table, warn = say, string_of, table, warn
+local say, sent_in, string_of, table, warn = say, sent_in, string_of, table, warn
 local PLAIN = DATA.plain_texts -- (the catalogue's texts without parameters: unmatched, never_answered, ...)
 local ECHO = DATA.pairing.echo
 -- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once by NS
@@ -6999,7 +7005,7 @@ local FC8_CODE, SUB_LISTEN_ONLY, SUB_RESTART = table.unpack(DATA.pairing.listen_
 -- (a response from slave 0 answers nothing, with a warning: after a broadcast of its function, naming it),
 -- and a request the spec has no server answer (awaits_answer, vw3.stream's: FC8 04) only an exception (the framer
 -- awaits nothing after it), never unanswered (f.answerless).
--- The timeout rule: a frame later than the timeout after the open request ends the wait (unanswered).
+-- The timeout rule: a frame later than the timeout after the open request was sent ends the wait (unanswered).
 -- Time going backwards: an answer stamped before its request still answers it, with a warning (its
 -- negative response time is shown as it is and left out of the response times).
 -- The retry rule (pairing.py): a frame identical to the open request (FC5, FC6, FC8's echo), later than the
@@ -7152,9 +7158,11 @@ local function answered(st, f)
   return awaits_answer(f) and listening_since(st, f.slave) == nil
 end
 
--- The timeout rule: is `time` later than the timeout after request `pending`'s?
+-- The timeout rule: is `time` later than the timeout after request `pending` was sent (its first byte's time and
+-- its characters' at the line's speed, vw3.stream's sent_in: pairing.py _late)?
 local function timed_out(st, pending, time)
-  return st.timeout ~= nil and time ~= nil and pending.time ~= nil and (time - pending.time) / NS > st.timeout
+  return st.timeout ~= nil and time ~= nil and pending.time ~= nil
+    and (time - pending.time) / NS - sent_in(pending) > st.timeout
 end
 
 local function pair(st, f)

@@ -1302,7 +1302,8 @@ static int echoes(const uint8_t *b, const FrameRef *q, const FrameRef *a) {
 }
 
 /* The frame after request q, expected as its answer: FRAME_OK (in *a: its answer, or the next request when
- * it was not answered), FRAME_NEED, or FRAME_HANDOVER, an answer later than the timeout too (no answer:
+ * it was not answered), FRAME_NEED, or FRAME_HANDOVER, an answer later than the timeout after q was sent
+ * (its first byte's time and its characters' at the line's speed) too (no answer:
  * pairing.py's warning), stamped before q (time going backwards: pairing.py's warning) or not echoing q (an
  * answer to nothing: pairing.py's note). A caller that
  * does not take the transaction takes the expectation back. */
@@ -1311,7 +1312,8 @@ static int answer_to(Engine *e, const uint8_t *b, Py_ssize_t n, const FrameRef *
     e->line.expect_function = q->function;
     int found = next_frame(e, b, q->at + q->length, n, a, q->decided);
     if (found == FRAME_OK && a->kind != KIND_REQUEST &&
-        ((q->timed && a->timed && (a->ns < q->ns || (e->tl.timeout >= 0 && stamp_seconds(a->ns, q->ns) > e->tl.timeout)))
+        ((q->timed && a->timed && (a->ns < q->ns || (e->tl.timeout >= 0 &&
+          stamp_seconds(a->ns, q->ns) - (double)q->length * e->tl.char_time > e->tl.timeout)))
          || !echoes(b, q, a)))
         return FRAME_HANDOVER;
     return found;

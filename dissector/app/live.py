@@ -472,7 +472,8 @@ def run_live(
         framer = None  # type: ignore[assignment]
     else:
         # The framer is the capture thread's; the dissector pairs, decodes and annotates what it frames.
-        dissector = Dissector(hold=True, annotate=annotate, timeout=timeout, live=True)
+        dissector = Dissector(hold=True, annotate=annotate, timeout=timeout, live=True,
+                              char_time=framer.timing.char_time)
     handoff = Handoff(HANDOFF_READS_LIMIT) if compiled is not None else Handoff()
     capture = CaptureThread(
         port, framer, files, handoff, silence_threshold(args.baud), args.duration, args.count,  # type: ignore[arg-type]

@@ -40,7 +40,7 @@ def choose_profiles(
         return
     annotate.thaw()
     framer = (AsciiFramer if mode == "ascii" else RtuFramer)(*([] if baud is None else [baud]))
-    pairer = Pairer(timeout=timeout)
+    pairer = Pairer(timeout=timeout, char_time=framer.timing.char_time)
     forced = annotate.per_slave
     settled = selector.settled
     observe = selector.observe

@@ -14,7 +14,7 @@ local FC8_CODE, SUB_LISTEN_ONLY, SUB_RESTART = table.unpack(DATA.pairing.listen_
 -- (a response from slave 0 answers nothing, with a warning: after a broadcast of its function, naming it),
 -- and a request the spec has no server answer (awaits_answer, vw3.stream's: FC8 04) only an exception (the framer
 -- awaits nothing after it), never unanswered (f.answerless).
--- The timeout rule: a frame later than the timeout after the open request ends the wait (unanswered).
+-- The timeout rule: a frame later than the timeout after the open request was sent ends the wait (unanswered).
 -- Time going backwards: an answer stamped before its request still answers it, with a warning (its
 -- negative response time is shown as it is and left out of the response times).
 -- The retry rule (pairing.py): a frame identical to the open request (FC5, FC6, FC8's echo), later than the
@@ -167,9 +167,11 @@ local function answered(st, f)
   return awaits_answer(f) and listening_since(st, f.slave) == nil
 end
 
--- The timeout rule: is `time` later than the timeout after request `pending`'s?
+-- The timeout rule: is `time` later than the timeout after request `pending` was sent (its first byte's time and
+-- its characters' at the line's speed, vw3.stream's sent_in: pairing.py _late)?
 local function timed_out(st, pending, time)
-  return st.timeout ~= nil and time ~= nil and pending.time ~= nil and (time - pending.time) / NS > st.timeout
+  return st.timeout ~= nil and time ~= nil and pending.time ~= nil
+    and (time - pending.time) / NS - sent_in(pending) > st.timeout
 end
 
 local function pair(st, f)

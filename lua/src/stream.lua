@@ -118,6 +118,12 @@ function lane.line_speed(baud)
 end
 lane.line_speed(TIMING.default_baud)
 
+-- Seconds a frame's characters take on the line at its speed (a request's timeout starts once it is sent:
+-- vw3.pairing's timed_out). A function: the speed is the preference's when it is called.
+local function sent_in(frame)
+  return frame.length * (frame.ascii and ASCII_CHAR_TIME or CHAR_TIME)
+end
+
 -- Record times are integer nanoseconds (show.lua record_ns): a difference in seconds is theirs divided
 -- once, as vw3-decode's Stamps subtract (model.py Stamp.__sub__), so that every comparison and text agrees.
 local NS = 1e9

@@ -148,7 +148,7 @@ def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytes
     """After a module's head comment the generator writes how it sees the shared names (`local M =
     require("vw3.env")`, `local _ENV = M`: every module alike, none restates them) and binds as locals what
     it uses of the earlier modules' exports and of the globals (the pairing module: DATA, format, next and table;
-    EXCEPTION, REQUEST, RESPONSE, echoed and string_of from layouts; awaits_answer and NS from stream; note, release_run, say and warn
+    EXCEPTION, REQUEST, RESPONSE, echoed and string_of from layouts; awaits_answer, NS and sent_in from stream; note, release_run, say and warn
     from decode);
     at its end it exports the module's top-level locals a later module names (pairing's pair and pair_part, which records
     calls, and ended, which show calls; not layouts' `select`, a length rule's maker, which would hide Lua's select from the later modules),
@@ -167,7 +167,7 @@ def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytes
         "local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)",
         "local DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer = DATA, EXCEPTION, NS, REQUEST, RESPONSE, awaits_answer",
         "local echoed, format, next, note, part_reason, release_run = echoed, format, next, note, part_reason, release_run",
-        "local say, string_of, table, warn = say, string_of, table, warn"]
+        "local say, sent_in, string_of, table, warn = say, sent_in, string_of, table, warn"]
     assert pairing.split("\nend\n\n-- ---- vw3.")[0].endswith("\nM.ended, M.pair, M.pair_part = ended, pair, pair_part")
     assert "M.pair" not in (SRC / "pairing.lua").read_text(encoding="utf-8")
     layouts = plugin.split('package.preload["vw3.layouts"] = function(...)\n')[1].split("\nend\n\n-- ---- vw3.")[0]

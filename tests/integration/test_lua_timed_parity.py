@@ -36,15 +36,15 @@ def test_random_timed_capture_parity(seed: int, tmp_path: Path) -> None:
 
 READ, ANSWER = rtu("01 03 0000 0002"), rtu("01 03 04 0001 0002")
 BASE = 1_700_000_000 * 10**9 + 123_456_789
-# Each time chosen where abs_ts's doubles give another digit than the nanoseconds (1000.0, 2.0, 500.0 ms).
+# Each time chosen where abs_ts's doubles give another digit than the nanoseconds (1005.5, 2.0, 500.0 ms).
 LATE, BACKWARDS, ENDING = BASE + 1_000_003, BASE + 5 * 10**9, BASE + 10_001_000_003
 RECORDS: list[tuple[bytes, int | None]] = [
-    (READ, LATE), (ANSWER, LATE + 1_000_050_000),  # 1000.05 ms: past the 1 s timeout
+    (READ, LATE), (ANSWER, LATE + 1_005_450_000),  # 1005.45 ms: past the 1 s timeout after the read's 4.6 ms
     (READ, BACKWARDS), (ANSWER, BACKWARDS - 2_050_000),  # stamped 2.05 ms before its request
     (READ, ENDING), (b"", ENDING + 500_050_000),  # the capture ends 500.05 ms after the last request
 ]
 TEXTS = [
-    "response 1000.1 ms after request #1, later than the 1000 ms timeout: not its answer",
+    "response 1005.4 ms after request #1, later than the 1000 ms timeout: not its answer",
     "response stamped 2.1 ms before request #3: time goes backwards, left out of the response times",
     "the capture ends 500.1 ms after the request, within the 1000 ms timeout: not known whether it was answered",
 ]
