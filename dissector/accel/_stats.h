@@ -283,12 +283,21 @@ static void poll_fail(Stats *st, const PollKey *key) {
     if (p != NULL) p->failed++;
 }
 
+#define MEI_FUNCTION 43 /* Encapsulated Interface Transport (pollcycle._MEI: the table's describer "mei") */
+#define MEI_DEVICE_ID 14 /* Read Device Identification: its read code and object id follow (pollcycle.DEVICE_ID) */
+
 /* pollcycle.request_key of a request the engine shows: its window and the window it writes (FC23) as lift_frame
- * read them by the protocol table's request layout; FC8 by its sub-function, the data's first word. */
+ * read them by the protocol table's request layout; FC8 by its sub-function, the data's first word; FC43 by its
+ * MEI type, and 14's by its read code and object id (a basic and an extended identification: two polls). */
 static void request_key(const uint8_t *f, const Lifted *r, PollKey *key) {
     const Lift *L = &request_lift[handled_index(f[1])];
     uint32_t fields[6] = {f[0], f[1], L->special ? word(f + 2) : r->start, r->quantity, r->values.start, r->values.count};
     *key = (PollKey){{0}, L->special ? 3 : !L->start_at ? 2 : L->write_quantity_at ? 6 : 4}; /* (the others 0) */
+    if (f[1] == MEI_FUNCTION && r->length >= 5) { /* (its MEI type there: slave, code, type, CRC) */
+        int device_id = f[2] == MEI_DEVICE_ID && r->length >= 7;
+        fields[2] = f[2], fields[3] = f[3], fields[4] = f[4];
+        key->size = device_id ? 5 : f[2] == MEI_DEVICE_ID ? 2 : 3;
+    }
     memcpy(key->fields, fields, key->size * sizeof *fields);
 }
 
