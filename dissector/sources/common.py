@@ -318,6 +318,10 @@ def record_chunks(
             return
     if part is not None and not (first and linktype == LINKTYPE_RTAC_SERIAL):  # (an RTAC's header: read above)
         yield PartChunk(bytes(part), time, True, record, (), length - header_size, original - header_size)
+    elif length == 0 and linktype == LINKTYPE_USER0:
+        # An empty record: no byte for the framers (they pass it over), but a packet tshark counts, that -w
+        # writes again where it stood (sources/trail.py); before, a copy lost it and its packet numbers slid.
+        yield Chunk(b"", time, True)
 
 
 def _payload_chunks(inp: Input, length: int, time: Stamp | None, linktype: int, record: int, log: WarningLog,

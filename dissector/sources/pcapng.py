@@ -400,7 +400,7 @@ class _Reader:
             last = replace(last, comments=comments)
         elif comments and last is not None:
             last = NotedChunk(last.data, last.time, last.boundary, self.record, comments)
-        elif comments:
+        if comments and (last is None or not last.data):  # (an empty record's go on with it for -w alone)
             self.unshown += len(comments)
         if last is not None:
             yield last
