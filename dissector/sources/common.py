@@ -212,7 +212,8 @@ def rtac_header(head: bytes, record: int, log: WarningLog) -> tuple[Stamp | None
     the bytes, which is what response times need; the pcap record time is when it was stored. Its
     microseconds 1 s or more: a corrupt stamp, the bytes decoded untimed with a warning (tshark's
     rtacser shows the field as it is; 4294967295 us read as 4294.97 s put a response 71 minutes
-    before its request).
+    before its request; the record's time is of another clock), the record a packet at its record's time
+    (record_chunks), as tshark counts it. A record shorter than the header is a packet at its record's time too.
     """
     if len(head) < RTAC_HEADER.size:
         log.warn(
@@ -300,13 +301,15 @@ def record_chunks(
         if first and linktype == LINKTYPE_RTAC_SERIAL:
             header = rtac_header(piece, record, log)
             if header is None:
+                if stamped is not None and time is not None:  # (a packet all the same, tshark's frame at its time)
+                    stamped(time)
                 inp.skip(remaining)
                 return
-            time, size = header
+            stored, (time, size) = time, header
             piece = piece[size:]
             header_size = size  # (a record captured in part says its serial bytes, as the plugin's tvb holds them)
-            if stamped is not None and time is not None:
-                stamped(time)
+            if stamped is not None and (time or stored) is not None:  # (a corrupt header's: its record's time)
+                stamped(time or stored)  # type: ignore[arg-type]
         first = False
         if part is not None:
             part += piece
