@@ -126,7 +126,7 @@ def hex_chunk(text: str, notation: Notation | None = None, where: str = "--hex")
         raise UsageError(f"{where}: {error}") from None
     if not data:
         raise UsageError(f"{where}: no bytes in {text!r}")
-    return Chunk(data, None, True)
+    return Chunk(bytes(data), None, True)
 
 
 def typed_chunks(text: str, notation: Notation | None = None, where: str = "--hex") -> list[Chunk]:
