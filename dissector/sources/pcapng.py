@@ -52,6 +52,7 @@ from dissector.sources.pcapng_blocks import (
     Interface,
     _interface,
     _options,
+    section_ordinal,
     is_pcapng,
     serial,
 )
@@ -80,7 +81,7 @@ class _Reader:
         self.record_log = Where(log, where) if where else log
         self.only = only
         self.tell_skipped = tell_skipped  # count the packets of interfaces not read (one bus of several says)
-        self.described = 0  # interfaces described so far in the file, all sections
+        self.described: list[Interface] = []  # the file's interfaces described so far, all sections (section_ordinal)
         self.ordinals: list[int] = []  # the section's interfaces' ordinals in the file
         # stop once the first serial interface is described (an Ethernet one beside it is no bus)
         self.first_interface = first_interface
@@ -131,8 +132,7 @@ class _Reader:
                     return
                 self.interfaces.append(_interface(body, self.order, inp.name))
                 self.transport.seekable = self.transport.seekable and not self.packeted
-                self.ordinals.append(self.described)
-                self.described += 1
+                self.ordinals.append(section_ordinal(self.interfaces[-1], self.described, self.ordinals))
                 if self.first_interface and serial(self.interfaces[-1].linktype):
                     return
             elif block_type in (EPB, OPB, SPB) and self._jump(start):
