@@ -489,6 +489,7 @@ class PcapngChunks:
     def __init__(self, reader: _Reader) -> None:
         self._reader = reader
         self._chunks = self._read()
+        self.damage: SourceError | None = None  # where the file is damaged after its first packet, once read
 
     def __iter__(self) -> Iterator[Chunk]:
         return self._chunks  # (the one generator: a loop that stops early resumes where it stopped)
@@ -535,6 +536,12 @@ class PcapngChunks:
             yield from self._reader.run()
         except _Ended:
             pass
+        except SourceError as error:
+            if self._reader.record == 0:
+                raise
+            # (damage after packets: the chunks end, the Source raises it after them, or the decode once it has
+            # shown them, as tshark shows them: reader.py Source.defer_damage; before, nothing was shown)
+            self.damage = error
         yield from self._reader.held.release(False)
         reader = self._reader
         if reader.networked:
