@@ -283,9 +283,12 @@ def record_chunks(
     if transport is not None and linktype not in (LINKTYPE_USER0, LINKTYPE_RTAC_SERIAL):
         yield from _payload_chunks(inp, length, time, linktype, record, log, transport)
         return
+    if length == 0 and linktype == LINKTYPE_RTAC_SERIAL:  # (no header: warned as any record shorter than it)
+        rtac_header(b"", record, log)
     remaining = length
     first = True
     header_size = 0
+    stored = time  # the record's time (an RTAC record's own is its header's, read below)
     part = bytearray() if original > length else None  # (at most a record's MAX_PACKET bytes: pcap.py, pcapng.py)
     while remaining > 0:
         wanted = min(remaining, chunk_size)
@@ -301,10 +304,8 @@ def record_chunks(
         if first and linktype == LINKTYPE_RTAC_SERIAL:
             header = rtac_header(piece, record, log)
             if header is None:
-                if stamped is not None and time is not None:  # (a packet all the same, tshark's frame at its time)
-                    stamped(time)
                 inp.skip(remaining)
-                return
+                break  # (a packet all the same, tshark's frame at its record's time: below)
             stored, (time, size) = time, header
             piece = piece[size:]
             header_size = size  # (a record captured in part says its serial bytes, as the plugin's tvb holds them)
@@ -319,12 +320,17 @@ def record_chunks(
             yield Chunk(piece, time, remaining == 0 and not cut)
         if cut:
             return
-    if part is not None and not (first and linktype == LINKTYPE_RTAC_SERIAL):  # (an RTAC's header: read above)
+    bare = linktype == LINKTYPE_RTAC_SERIAL and not header_size  # (an RTAC record shorter than its header)
+    if part is not None and not bare:
         yield PartChunk(bytes(part), time, True, record, (), length - header_size, original - header_size)
-    elif length == 0 and linktype == LINKTYPE_USER0:
-        # An empty record: no byte for the framers (they pass it over), but a packet tshark counts, that -w
-        # writes again where it stood (sources/trail.py); before, a copy lost it and its packet numbers slid.
-        yield Chunk(b"", time, True)
+    elif length == header_size and linktype in (LINKTYPE_USER0, LINKTYPE_RTAC_SERIAL) or bare:
+        # An empty record (an RTAC's event, its header alone, or one shorter than its header): no byte for the
+        # framers (they pass it over), but a packet tshark counts, at its record's time when its header tells
+        # none, that -w writes again where it stood (sources/trail.py); before, a copy lost it, its packet
+        # numbers slid.
+        if bare and stamped is not None and stored is not None:
+            stamped(stored)
+        yield Chunk(b"", time if time is not None else stored, True)
 
 
 def _payload_chunks(inp: Input, length: int, time: Stamp | None, linktype: int, record: int, log: WarningLog,

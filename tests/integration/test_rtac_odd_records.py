@@ -2,15 +2,18 @@
 corrupt (1 s or more) and one shorter than the 12-byte header. Each is a packet at its record's time, as tshark
 counts it: the answer after it says -t d 0.006000 from it (tshark's frame.time_delta), where before it said
 0.008000 from the request (neither was a packet). The corrupt record's own serial bytes stay untimed (its record's
-clock may not be its header's: tests/unit/test_capture_stamps.py). Engine and VW3_PURE_PYTHON=1, pcap and pcapng."""
+clock may not be its header's: tests/unit/test_capture_stamps.py). A -w copy keeps each record, an RTAC event's and
+the odd one's as empty records at their times. Engine and VW3_PURE_PYTHON=1, pcap and pcapng."""
 from __future__ import annotations
 
 import struct
+import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 from helpers import run_cli, use_engine
+from lua_harness import ensure_tool
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "differential"))  # (collected alone: not on the path)
 from test_rtac_packet_times import ANSWER, REQUEST, T0, _pcapng, _rtac  # noqa: E402
@@ -65,3 +68,27 @@ def test_the_corrupt_records_bytes_stay_untimed(tmp_path: Path, monkeypatch: pyt
     assert [" ".join(line.split()[:4]) for line in out.splitlines()] == [
         "1 0.001000 12 request", "2 - - noise", "3 0.006000 12 response",
         "4 0.491000 12 request", "5 0.020000 12 response"]
+
+
+@pytest.mark.parametrize("pure", [False, True], ids=["engine", "python"])
+@pytest.mark.parametrize("write", [_pcap, _ng], ids=["pcap", "pcapng"])
+@pytest.mark.parametrize("odd", [CORRUPT, SHORT], ids=["corrupt-microseconds", "short"])
+def test_a_copy_keeps_every_packet(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool, write,  # type: ignore[no-untyped-def]
+                                   odd: bytes) -> None:
+    """-w writes the serial bytes (link type 147), each event record, and the odd one, an empty record at its time:
+    tshark numbers and times the copy's packets as the input's. Before, the copy held the 4 frames alone."""
+    use_engine(monkeypatch, pure)
+    path = write(tmp_path / "odd.cap", odd)
+    copy = tmp_path / "copy.pcap"
+    assert run_cli(["-n", "-w", str(copy), "-q", str(path)])[0] == 0
+    fields = ["-T", "fields", "-e", "frame.number", "-e", "frame.time_epoch"]
+    assert _tshark_fields(copy, fields) == _tshark_fields(path, fields)
+    assert [line.split("\t")[1] for line in _tshark_fields(copy, ["-T", "fields", "-e", "frame.len", "-e",
+                                                                  "frame.cap_len"])] == ["0", "8", "0", "11", "8", "11"]
+
+
+def _tshark_fields(path: Path, options: list[str]) -> list[str]:
+    done = subprocess.run([ensure_tool("tshark", "tshark"), "-n", "-r", str(path), *options], capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    return done.stdout.splitlines()
