@@ -370,7 +370,7 @@ def _annotator(args: argparse.Namespace) -> Annotator | None:
 def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | None) -> int:
     sinks = Sinks(args, env, annotate)
     try:
-        _decode_inputs(args, env, sinks, annotate)
+        damage = _decode_inputs(args, env, sinks, annotate)
         sinks.close()
         profile_notes(sinks.buses, annotate, env.stderr, env.stderr_isatty)
         # (a --map written in PLC references, told from the traffic: once per run, terminal or not)
@@ -378,6 +378,8 @@ def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | No
             env.stderr.write(f"{PROG}: warning: {shown(warning)}\n")
         if sinks.wrote is not None and env.stderr_isatty:
             env.stderr.write(f"{PROG}: wrote {shown(sinks.wrote)}\n")
+        if damage is not None:  # (an input damaged after its first packets: they are shown, the run ends refused)
+            raise damage
     except BrokenPipeError:
         sinks.abandon()
         raise  # the reader went away: main() ends quietly
@@ -389,7 +391,9 @@ def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | No
 
 def _decode_inputs(
     args: DecodeOptions, env: Environment, sinks: Sinks, annotate: Annotator | None
-) -> None:
+) -> SourceError | None:
+    """The inputs decoded; the damage that ended one after its first packets (Source.damage), the inputs after it
+    not read, or None."""
     devices: dict[object, Annotator | None] = {}  # per bus (pcapng interface) its annotator
     # The devices as they are before any frame, for a pcapng's other interfaces and a network capture's other
     # connections (~13 ms a copy; a pcap's second connection took up the first's evidence for profile auto).
@@ -398,7 +402,7 @@ def _decode_inputs(
     chosen_over_all = choose_over_all(args, env, annotate)
     try:
         for (title, chunks, mode, take_warnings, recorded, timed, fix, (path, source_format),
-             bus, again, units, packets) in inputs(args, env):
+             bus, again, units, packets, damage) in inputs(args, env):
             if sinks.done:
                 break
             line = input_line(path, source_format, args, bus)
@@ -443,9 +447,12 @@ def _decode_inputs(
                 # (--hex bytes typed from a manual have their own notes: a CRC typo is spelled out).
                 env.stderr.write(no_frame_warning(path, mode, sinks.input_bytes, framer.cut_records,
                                                   framer.cut_bytes))
+            if damage() is not None:  # (its packets before the damage shown, as tshark shows them: then refused)
+                return damage()  # type: ignore[no-any-return]
     except BaseException as error:
         sinks.abandon(isinstance(error, SourceError))
         raise
+    return None
 
 
 def _live(args: argparse.Namespace, env: Environment) -> int:

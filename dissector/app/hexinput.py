@@ -31,6 +31,7 @@ from dissector.framing.rules import spans_a_frame
 from dissector.model import Chunk, Frame, Item
 from dissector.protocol.crc import crc16, crc_bytes, lrc
 from dissector.sources.common import Input, SourceError, WarningLog
+from dissector.sources.hexdump import HexLineError, parse_line
 from dissector.sources.notation import Notation, NotationError
 from dissector.sources.packetdump import looks_like_packet_dump, read_packet_dump
 from dissector.sources.traffic import looks_like_traffic, parse_traffic_line
@@ -107,18 +108,25 @@ def ascii_frames(text: str, where: str = "--hex") -> bytes:
 def hex_chunk(text: str, notation: Notation | None = None, where: str = "--hex") -> Chunk:
     """Bytes typed from a manual or pasted from a log: hex pairs (`0C 03 20 D0 ...`, `0x0C,0x03`,
     `0C:03:20:D0`), a decimal list (`12, 3, 32, 208`; notation.py says when a list is decimal), or a
-    Modbus ASCII frame as printed (`:02062329000AA2`, ascii_frames). One argument is one frame: a boundary
-    follows. `notation` carries what earlier arguments showed."""
+    Modbus ASCII frame as printed (`:02062329000AA2`, ascii_frames). Each line is read as a hex dump file's
+    (sources/hexdump.py parse_line: NModbus's `TX: 1, 3, 0, 22, ...` too; before, --hex refused what the file
+    reader took). One argument is one frame: a boundary follows. `notation` carries what earlier arguments
+    showed."""
     stripped = text.strip()
     if stripped.startswith(":"):
         return Chunk(ascii_frames(text, where), None, True)
-    try:
-        data = (notation if notation is not None else Notation()).read(text, where)
-    except NotationError as error:
+    known = notation if notation is not None else Notation()
+    lines = text.splitlines() or [text]
+    data = bytearray()
+    try:  # (each line as a hex dump file's: a TX:/RX: label, a time stamp (untimed here) or a # note passed over)
+        for number, line in enumerate(lines, start=1):
+            parsed = parse_line(line, known, where if len(lines) == 1 else f"{where} line {number}")
+            data += parsed[1] if parsed is not None else b""
+    except (NotationError, HexLineError) as error:
         raise UsageError(f"{where}: {error}") from None
     if not data:
         raise UsageError(f"{where}: no bytes in {text!r}")
-    return Chunk(data, None, True)
+    return Chunk(bytes(data), None, True)
 
 
 def typed_chunks(text: str, notation: Notation | None = None, where: str = "--hex") -> list[Chunk]:

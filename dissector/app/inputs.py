@@ -33,18 +33,21 @@ TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic", "tshark-x", "
 TIMED_TEXTS = ("hexdump", "traffic", "tshark-x", "pymodbus")  # of those, texts: their times' digits say their precision
 
 Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], Callable[[], Any], bool, Fix,
-              tuple[str | None, str | None], "PacketInterface | None", "Callable[[], Any] | None", int | None, Any]
+              tuple[str | None, str | None], "PacketInterface | None", "Callable[[], Any] | None", int | None, Any,
+              Callable[[], Any]]
 
 
 def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
-    """(title, chunks, mode, take_warnings, recorded, timed, fix, (path, format), interface, again, units, packets) per
+    """(title, chunks, mode, take_warnings, recorded, timed, fix, (path, format), interface, again, units, packets,
+    damage) per
     input: the files of one ring buffer are one input (app/rings.py), read as one stream, `path` its
     first; a pcapng file with packets from several interfaces is one input per interface, each its own bus
     (sources/interfaces.py), titled `file: interface name`; `recorded`: once read, when its last record was
     made (Source.recorded_until: the other interfaces' records too); `again`: the same input opened anew,
     for profile `auto` to read it twice (None: standard input, a FIFO, --hex: not read twice); `units`: its
     records' time units a second, whose precision the time column shows (None: not a pcap or pcapng); `packets`: a
-    network capture's packet times, the time column's references (sources/ethernet.py PacketTimes; else None)."""
+    network capture's packet times, the time column's references (sources/ethernet.py PacketTimes; else None);
+    `damage`: once read, what damaged the input after its first packets (Source.damage; None: nothing)."""
     from dissector.sources.common import rereadable
 
     captures = group_files(args.files)
@@ -54,12 +57,12 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
         fix = typed.fix if typed.repairs else None
         # (timed: its arguments are records, whose ends the compiled timed path keeps; the raw path drops them)
         yield (("--hex" if several else None), typed.chunks, typed.mode, list, lambda: None, True, fix, (None, None),
-               None, None, None, None)
+               None, None, None, None, lambda: None)
     for shown_name, files in captures:
         path = files[0]
         buses = packet_interfaces(path, _ports(args)) if path != "-" and args.format in (None, "pcap", "pcapng") else []
         for bus in buses if len(buses) > 1 else [None]:
-            source = _open_input(files, bus, args, env.stdin if path == "-" else None)
+            source = _deferred(_open_input(files, bus, args, env.stdin if path == "-" else None))
             chunks: Iterable[Chunk] = source
             # The bar shares the terminal with nothing: items go elsewhere, or only a report, --stats or
             # --watch come at the end.
@@ -70,13 +73,14 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
                 chunks = progress_for(source, shown_name, env.stderr, files)
             timed = source.format in TIMED_FORMATS
             title = shown_name if bus is None else f"{shown_name}: {bus.label()}"
-            again = (lambda files=files, bus=bus: _open_input(files, bus, args, None)) \
+            again = (lambda files=files, bus=bus: _deferred(_open_input(files, bus, args, None))) \
                 if all(map(rereadable, files)) else None
             units = time_units(source, buses, bus, path, args.format)
             take_warnings = _named(source.take_warnings, shown_name, path) if several else source.take_warnings
             yield ((title if several or bus is not None else None), chunks, source.mode, take_warnings,
                    lambda source=source: source.recorded_until, timed, None, (path, source.format), bus,
-                   again, units, getattr(source, "packet_times", None))
+                   again, units, getattr(source, "packet_times", None),
+                   lambda source=source: getattr(source, "damage", None))
 
 
 def _named(take_warnings: Callable[[], list[str]], name: str, path: str) -> Callable[[], list[str]]:
@@ -326,6 +330,13 @@ def profile_notes(buses: Any, annotate: Any, stderr: Any, is_terminal: bool) -> 
             stderr.write(f"{PROG}: {shown(title(bus))}: {shown(line)}\n")
 
 
+def _deferred(source: Any) -> Any:
+    """A source whose damage after its first packets ends it, kept for the decode to refuse it after showing them
+    (sources/reader.py Source.defer_damage; a ring buffer's files raise it as they are read)."""
+    defer = getattr(source, "defer_damage", None)
+    return defer() if defer is not None else source
+
+
 def observe_records(chunks: Iterable[Chunk], source_format: str | None,
                     writing: bool) -> tuple[Iterable[Chunk], RecordTrail | None]:
     """The chunks through a trail of their records (sources/trail.py): with -w (its times and comments), or
@@ -396,7 +407,7 @@ def choose_over_all(args: DecodeOptions, env: Any, annotate: Any) -> bool:
     listed = inputs(args, env)
     try:
         for (title, chunks, mode, _warnings, _recorded, _timed, fix, (path, source_format), bus,
-             again, _units, _packets) in listed:
+             again, _units, _packets, _damage) in listed:
             selector.source = title  # (the evidence names the file it is in, as the decode cites it)
             try:
                 choose_profiles_first(annotate, args, chunks, mode, path, again,

@@ -50,7 +50,10 @@ def _named_files(values: list[str] | None) -> list[str]:
 def refuse_same_files(args: argparse.Namespace, stdin: object = None, stdout: object = None) -> None:
     """UsageError (exit 2) when an output is an input or another output; checked before any is opened.
     `stdin`: the stream `-` reads, `stdout` the one text (or -w -) goes to: their descriptors are compared
-    (`vw3-decode st.pcap >> st.pcap` would read what it writes)."""
+    (`vw3-decode st.pcap >> st.pcap` would read what it writes). Standard input given twice is refused: the
+    second read of it is empty (`vw3-decode - -` decoded it, then warned `-: standard input: the input is empty`)."""
+    if args.files.count(STDIO) > 1:
+        raise UsageError("standard input (-) is given twice: it can be read once")
     inputs = [(name, path) for name, path in (
         *(("input", path) for path in args.files if path != STDIO),
         *(("--profile", path) for path in _named_files(getattr(args, "profile", None))),

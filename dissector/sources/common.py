@@ -212,7 +212,8 @@ def rtac_header(head: bytes, record: int, log: WarningLog) -> tuple[Stamp | None
     the bytes, which is what response times need; the pcap record time is when it was stored. Its
     microseconds 1 s or more: a corrupt stamp, the bytes decoded untimed with a warning (tshark's
     rtacser shows the field as it is; 4294967295 us read as 4294.97 s put a response 71 minutes
-    before its request).
+    before its request; the record's time is of another clock), the record a packet at its record's time
+    (record_chunks), as tshark counts it. A record shorter than the header is a packet at its record's time too.
     """
     if len(head) < RTAC_HEADER.size:
         log.warn(
@@ -282,9 +283,12 @@ def record_chunks(
     if transport is not None and linktype not in (LINKTYPE_USER0, LINKTYPE_RTAC_SERIAL):
         yield from _payload_chunks(inp, length, time, linktype, record, log, transport)
         return
+    if length == 0 and linktype == LINKTYPE_RTAC_SERIAL:  # (no header: warned as any record shorter than it)
+        rtac_header(b"", record, log)
     remaining = length
     first = True
     header_size = 0
+    stored = time  # the record's time (an RTAC record's own is its header's, read below)
     part = bytearray() if original > length else None  # (at most a record's MAX_PACKET bytes: pcap.py, pcapng.py)
     while remaining > 0:
         wanted = min(remaining, chunk_size)
@@ -301,12 +305,12 @@ def record_chunks(
             header = rtac_header(piece, record, log)
             if header is None:
                 inp.skip(remaining)
-                return
-            time, size = header
+                break  # (a packet all the same, tshark's frame at its record's time: below)
+            stored, (time, size) = time, header
             piece = piece[size:]
             header_size = size  # (a record captured in part says its serial bytes, as the plugin's tvb holds them)
-            if stamped is not None and time is not None:
-                stamped(time)
+            if stamped is not None and (time or stored) is not None:  # (a corrupt header's: its record's time)
+                stamped(time or stored)  # type: ignore[arg-type]
         first = False
         if part is not None:
             part += piece
@@ -316,8 +320,17 @@ def record_chunks(
             yield Chunk(piece, time, remaining == 0 and not cut)
         if cut:
             return
-    if part is not None and not (first and linktype == LINKTYPE_RTAC_SERIAL):  # (an RTAC's header: read above)
+    bare = linktype == LINKTYPE_RTAC_SERIAL and not header_size  # (an RTAC record shorter than its header)
+    if part is not None and not bare:
         yield PartChunk(bytes(part), time, True, record, (), length - header_size, original - header_size)
+    elif length == header_size and linktype in (LINKTYPE_USER0, LINKTYPE_RTAC_SERIAL) or bare:
+        # An empty record (an RTAC's event, its header alone, or one shorter than its header): no byte for the
+        # framers (they pass it over), but a packet tshark counts, at its record's time when its header tells
+        # none, that -w writes again where it stood (sources/trail.py); before, a copy lost it, its packet
+        # numbers slid.
+        if bare and stamped is not None and stored is not None:
+            stamped(stored)
+        yield Chunk(b"", time if time is not None else stored, True)
 
 
 def _payload_chunks(inp: Input, length: int, time: Stamp | None, linktype: int, record: int, log: WarningLog,

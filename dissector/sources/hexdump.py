@@ -166,10 +166,10 @@ def parse_line(line: str, notation: Notation | None = None, where: str = "") -> 
         time, used = None, 0  # `10:00:00` alone (or `99:99:99`): colon hex, not a time without data
     else:
         time, used = _timestamp(tokens)
-    if used < len(tokens) and _LABEL.fullmatch(tokens[used]):
-        used += 1
+    label = used < len(tokens) and _LABEL.fullmatch(tokens[used]) is not None
+    used += label
     if used == len(tokens):
-        raise HexLineError("a timestamp without data")
+        raise HexLineError(f"{tokens[-1]!r} without data" if label else "a timestamp without data")
     try:
         data = (notation if notation is not None else Notation()).read(" ".join(tokens[used:]), where)
     except RefusedList:

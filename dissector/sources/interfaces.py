@@ -24,7 +24,8 @@ from dissector.sources.common import LINKTYPE_USER0, Input, SourceError, Warning
 from dissector.sources.ethernet import NETWORK_LINKTYPES, Connection, RtuPorts, Span
 from dissector.sources.pcap import PcapRecords, is_pcap, read_pcap
 from dissector.sources.pcapng import read_pcapng
-from dissector.sources.pcapng_blocks import EPB, IDB, MAX_HEADER_BLOCK, OPB, SHB_MAGIC, SPB, Interface, _interface, serial
+from dissector.sources.pcapng_blocks import (EPB, IDB, MAX_HEADER_BLOCK, OPB, SHB_MAGIC, SPB, Interface, _interface,
+                                             section_ordinal, serial)
 
 SCAN_BUFFER = 1 << 20  # the walk's reads
 
@@ -150,8 +151,7 @@ def _walk(stream, size: int, path: str) -> tuple[list[PacketInterface], int, boo
                 buffer, base = b"", 0
             else:
                 body = buffer[at + 8 : at + total - 4]
-            section.append(len(described))
-            described.append(_interface(body, order, path))
+            section.append(section_ordinal(_interface(body, order, path), described, section))
         elif block_type in (EPB, OPB, SPB):
             if block_type == SPB:
                 index = 0

@@ -241,6 +241,22 @@ class PcapRecords:
         self._packet = rtac_mark(self.rtac_times, time)
 
 
+def empty_records(buffer: bytes, position: int, end: int, reader: PcapRecords, offset: int) -> list[tuple[int, int | None]]:
+    """The empty records among the standard ones of `buffer` from `position` to `end` (a bulk scan passed over
+    them: accel/records.py), as (stream offset, time in ns or None), `offset` the stream offset at `position`:
+    -w writes them again (sources/trail.py), as the records this reader gives (common.py record_chunks)."""
+    header = struct.Struct(reader.order + "IIII")
+    found: list[tuple[int, int | None]] = []
+    while position + RECORD_HEADER_SIZE <= end:
+        seconds, fraction, captured, original = header.unpack_from(buffer, position)
+        if captured == 0 and original == 0:
+            timed = (seconds or fraction) and fraction < reader.units
+            found.append((offset, Stamp.from_parts(seconds, fraction, reader.units).ns if timed else None))
+        position += RECORD_HEADER_SIZE + captured
+        offset += captured
+    return found
+
+
 CORRUPT_STAMPS = "corrupt time stamps"
 
 

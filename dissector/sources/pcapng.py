@@ -52,6 +52,7 @@ from dissector.sources.pcapng_blocks import (
     Interface,
     _interface,
     _options,
+    section_ordinal,
     is_pcapng,
     serial,
 )
@@ -80,7 +81,7 @@ class _Reader:
         self.record_log = Where(log, where) if where else log
         self.only = only
         self.tell_skipped = tell_skipped  # count the packets of interfaces not read (one bus of several says)
-        self.described = 0  # interfaces described so far in the file, all sections
+        self.described: list[Interface] = []  # the file's interfaces described so far, all sections (section_ordinal)
         self.ordinals: list[int] = []  # the section's interfaces' ordinals in the file
         # stop once the first serial interface is described (an Ethernet one beside it is no bus)
         self.first_interface = first_interface
@@ -131,8 +132,7 @@ class _Reader:
                     return
                 self.interfaces.append(_interface(body, self.order, inp.name))
                 self.transport.seekable = self.transport.seekable and not self.packeted
-                self.ordinals.append(self.described)
-                self.described += 1
+                self.ordinals.append(section_ordinal(self.interfaces[-1], self.described, self.ordinals))
                 if self.first_interface and serial(self.interfaces[-1].linktype):
                     return
             elif block_type in (EPB, OPB, SPB) and self._jump(start):
@@ -400,7 +400,7 @@ class _Reader:
             last = replace(last, comments=comments)
         elif comments and last is not None:
             last = NotedChunk(last.data, last.time, last.boundary, self.record, comments)
-        elif comments:
+        if comments and (last is None or not last.data):  # (an empty record's go on with it for -w alone)
             self.unshown += len(comments)
         if last is not None:
             yield last
@@ -489,6 +489,7 @@ class PcapngChunks:
     def __init__(self, reader: _Reader) -> None:
         self._reader = reader
         self._chunks = self._read()
+        self.damage: SourceError | None = None  # where the file is damaged after its first packet, once read
 
     def __iter__(self) -> Iterator[Chunk]:
         return self._chunks  # (the one generator: a loop that stops early resumes where it stopped)
@@ -535,6 +536,12 @@ class PcapngChunks:
             yield from self._reader.run()
         except _Ended:
             pass
+        except SourceError as error:
+            if self._reader.record == 0:
+                raise
+            # (damage after packets: the chunks end, the Source raises it after them, or the decode once it has
+            # shown them, as tshark shows them: reader.py Source.defer_damage; before, nothing was shown)
+            self.damage = error
         yield from self._reader.held.release(False)
         reader = self._reader
         if reader.networked:

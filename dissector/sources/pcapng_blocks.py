@@ -69,3 +69,16 @@ def _interface(body: bytes, order: str, name: str) -> Interface:
 def serial(linktype: int) -> bool:
     """Does an interface of this link type carry serial bytes vw3-decode reads (common.check_linktype)?"""
     return linktype in (LINKTYPE_USER0, LINKTYPE_RTAC_SERIAL)
+
+
+def section_ordinal(interface: Interface, described: list[Interface], section: list[int]) -> int:
+    """The file's ordinal of an interface a section describes (`section`: this section's ordinals so far): an
+    earlier section's identical interface's (a file of sections cat'ed from one tap is one bus, as tshark 4.0 and
+    the plugin read it: before, the answers in the second section were another bus's, `[no request]`), else a new
+    one, added to `described`."""
+    for ordinal, known in enumerate(described):
+        if known == interface and ordinal not in section:
+            return ordinal
+    described.append(interface)
+    return len(described) - 1
+

@@ -17,10 +17,14 @@ recv lines ends a frame only where the program turns to sending (or the log ends
 The direction decides nothing more: the framer tells a request from an answer, as for any capture.
 
 A client and a server logging in one process (a test bench) log each frame twice: the sender's send line and
-the other end's recv of the same bytes. Where the log shows both ends (a recv pymodbus decoded as a request, one
-decoded as a response, or their own lines: the server's `Server listening.`, the client's `Connecting to ...`),
-a recv run reading back the bytes sent since the run before is the other end's read, passed over: the frame is
-the send's, at its time. A one-end log keeps its echoes (an FC6 answer is its request's bytes again).
+the other end's recv of the same bytes. Such a log's every recv run reads back the bytes sent since the run before
+(_Mirror), and pymodbus decodes them as a request (the server reading its client's) and as a response (the client
+reading its server's): once both are seen, such runs are the other end's reads, passed over, the frame the send's,
+at its time. Until then they are held (the first request of a log begun after both ends connected was shown twice
+before). A recv run of other bytes (a device's answer, a request from another process) says the log is not of
+that kind: a one-end log keeps its echoes (an FC6 answer is its request's bytes again), and so does a gateway
+that forwards the exact bytes it read (its first recv reads what no send gave). Without decode lines, the ends'
+own lines (the server's `Server listening.`, the client's `Connecting to ...`) tell the same.
 """
 from __future__ import annotations
 
@@ -92,13 +96,13 @@ def _chunks(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
     days = Days()
     run: list[Chunk] = []  # recv lines' bytes, until the next wire line says whether a frame ends there
     sent = bytearray()  # the bytes of the send lines since the last recv run
-    ends: set[str] = set()  # the ends the log shows ("Request": a server, "Response": a client)
+    mirror = _Mirror()
     found = buffered = False
     for number, line, ended in ended_lines(inp, chunk_size):
         wire = wire_line(line)
         if wire is None:
             buffered = buffered or _BUFFER.search(line) is not None
-            _ends(line, ends)
+            _ends(line, mirror.ends if run else mirror.startup)
             continue
         direction, tokens, labelled = wire
         if not ended and not labelled:  # the last number may be cut (`0xd` of `0xda`): not read
@@ -110,24 +114,74 @@ def _chunks(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
         chunk = Chunk(data, days.place(_time(line, f"{inp.name} line {number}")), True)  # type: ignore[arg-type]
         if direction == "send":
             if run:
-                yield from _run(run, sent, ends)
+                yield from mirror.run(run, sent)
                 run, sent = [], bytearray()
             if data:
                 sent += data
-                yield chunk
+                yield from mirror.give([chunk])
         elif data:
             run.append(Chunk(data, chunk.time, False))
             if not sent.startswith(b"".join(piece.data for piece in run)):  # (no read-back: held no longer)
-                yield from run[:-1]
+                mirror.mirrored = False if mirror.mirrored is None else mirror.mirrored
+                yield from mirror.give(run[:-1])
                 del run[:-1]
     if run:
-        yield from _run(run, sent, ends)
+        yield from mirror.run(run, sent)
+    yield from mirror.give([], True)
     if not found and buffered:
         log.warn("empty", f"{inp.name}: no send: or recv: line, only the framer's Processing: buffers, which repeat "
                           "bytes and hold no request sent (pymodbus's sync clients log no more): log an async client "
                           "or the server, or capture the line")
     elif not found:  # (--format pymodbus on another text: every line passed over, said, not silent)
         log.warn("empty", f"{inp.name}: no send: or recv: line of a pymodbus debug log")
+
+
+HELD_RUNS = 64  # read-backs held undecided at most (memory bounded): past them the log is one end's
+
+
+class _Mirror:
+    """Does the log show both ends of one link (the module's docstring)? `mirrored`: None while not known. The
+    chunks after a recv run reading back the sends before it are held while it is not known."""
+
+    def __init__(self) -> None:
+        self.mirrored: bool | None = None
+        self.startup: set[str] = set()  # the ends the ends' own lines show
+        self.ends: set[str] = set()  # the ends decoding the read-backs (what the decode lines after a run say)
+        self.kinds: set[str] = set()  # what read-backs were decoded as
+        self.held: list[tuple[list[Chunk], bool]] = []  # (chunks, a read-back's) in order
+        self.candidates = 0
+
+    def run(self, run: list[Chunk], sent: bytearray) -> Iterator[Chunk]:
+        """A recv run, a frame ending after its last chunk (the program turns to sending, or the log ends)."""
+        chunks = [*run[:-1], Chunk(run[-1].data, run[-1].time, True)]
+        ends, self.ends = self.ends, set()
+        if b"".join(chunk.data for chunk in run) != sent:
+            self.mirrored = False if self.mirrored is None else self.mirrored
+            yield from self.give(chunks)
+            return
+        if self.mirrored is None:
+            self.kinds |= ends
+            self.held.append((chunks, True))
+            self.candidates += 1
+            if len(self.kinds) == 2 or (not self.kinds and len(self.startup) == 2):  # (no decode line: the ends' own)
+                self.mirrored = True
+            yield from self.give([])
+        elif not self.mirrored:
+            yield from self.give(chunks)
+
+    def give(self, chunks: list[Chunk], end: bool = False) -> Iterator[Chunk]:
+        """`chunks` when nothing is held, else after what is held; what is held once it is known (or at the end)."""
+        if self.mirrored is None and (end or self.candidates > HELD_RUNS):
+            self.mirrored = len(self.kinds | self.startup) == 2
+        if self.mirrored is None:
+            if chunks:
+                self.held.append((chunks, False))
+            return
+        for held, read_back in self.held:
+            if not (read_back and self.mirrored):
+                yield from held
+        self.held.clear()
+        yield from chunks
 
 
 def _ends(line: str, ends: set[str]) -> None:
@@ -139,12 +193,3 @@ def _ends(line: str, ends: set[str]) -> None:
         ends.add("Request")
     elif _CLIENT.search(line):
         ends.add("Response")
-
-
-def _run(run: list[Chunk], sent: bytearray, ends: set[str]) -> Iterator[Chunk]:
-    """A recv run's chunks, a frame ending after the last (the program turns to sending, or the log ends); none
-    where both ends log and it reads back the bytes `sent` since the run before: the other end reading them."""
-    if len(ends) == 2 and b"".join(chunk.data for chunk in run) == sent:
-        return
-    yield from run[:-1]
-    yield Chunk(run[-1].data, run[-1].time, True)

@@ -231,6 +231,7 @@ class Source:
         self._log = log
         self._closer = closer
         self._taken = 0
+        self._defer = False
         # Not a regular file (standard input, a pipe, a FIFO): bytes come as they are written, and a
         # reader must not wait for more than what is there before it shows what it has.
         self.streaming = True
@@ -238,6 +239,23 @@ class Source:
     @property
     def warnings(self) -> list[str]:
         return self._log.messages
+
+    def defer_damage(self) -> Source:
+        """Damage after the input's first packet (a pcapng's corrupt block) ends its chunks and is kept in `damage`
+        rather than raised at their end: the decode shows the packets before it, then refuses the input
+        (app/cli.py), as tshark shows them before its error. Before, nothing was shown."""
+        self._defer = True
+        return self
+
+    @property
+    def damage(self) -> SourceError | None:
+        """Once read: what damaged the input after its first packet; None: nothing."""
+        return getattr(self._chunks, "damage", None)
+
+    def _damaged(self) -> None:
+        """Raise the damage that ended the chunks, unless deferred (defer_damage)."""
+        if self.damage is not None and not self._defer:
+            raise self.damage
 
     @property
     def recorded_until(self) -> Stamp | None:
@@ -272,6 +290,7 @@ class Source:
             head, self._head = self._head, []
             yield from head
             yield from self._chunks
+            self._damaged()
         finally:
             self._log.close()
             self.close()
@@ -286,6 +305,7 @@ class Source:
         """The end of reading through parts(), as of iterating."""
         self._log.close()
         self.close()
+        self._damaged()
 
     def close(self) -> None:
         self._closer()

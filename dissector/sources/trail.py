@@ -62,6 +62,7 @@ class RecordTrail:
         self.offset = 0  # bytes observed: the next chunk's offset, as the framers count
         self._parts: deque[tuple[int, Any]] = deque()  # (first byte, time) of each chunk (-w)
         self._commented: deque[tuple[int, int, tuple[str, ...]]] = deque()  # (first byte, end, comments)
+        self._empty: deque[tuple[int, Any, tuple[str, ...]]] = deque()  # (offset, time, comments): -w's empty records
         self.comments = 0  # comments read
         self.name: str | None = None  # the file being read, of a ring buffer's (None: the input's one)
         # (file, record, comments) of each record carrying comments
@@ -71,6 +72,12 @@ class RecordTrail:
         times, parts = self.times, self._parts
         offset = start = self.offset  # (the record being read starts at `start`)
         for chunk in chunks:
+            if not chunk.data and type(chunk) in (Chunk, NotedChunk):  # (an empty record: common.py record_chunks)
+                if times:
+                    self._empty.append((offset, chunk.time, getattr(chunk, "comments", ())))
+                start = offset
+                yield chunk
+                continue
             if times:
                 parts.append((offset, chunk.time))
             offset += len(chunk.data)
@@ -83,11 +90,14 @@ class RecordTrail:
             self.offset = offset
             yield chunk
 
-    def observe_reads(self, starts: Sequence[int], times: list[int | None] | None, end: int) -> None:
+    def observe_reads(self, starts: Sequence[int], times: list[int | None] | None, end: int,
+                      empty: Sequence[tuple[int, int | None]] = ()) -> None:
         """Reads taken in bulk, which carry no comments (a pcap's records, accel/records.py observe_block),
-        as `observe` takes them: where each begins, its time in integer ns (-w), the end of the last."""
+        as `observe` takes them: where each begins, its time in integer ns (-w), the end of the last; `empty`:
+        the empty records among them, (offset, time in ns or None)."""
         if self.times and times is not None:
             self._parts.extend(zip(starts, times))
+            self._empty.extend((offset, None if ns is None else Stamp(ns), ()) for offset, ns in empty)
         self.offset = end
 
     @property
@@ -105,7 +115,7 @@ class RecordTrail:
             while len(parts) > 1 and parts[1][0] <= start:
                 parts.popleft()
             if not commented and (len(parts) < 2 or parts[1][0] >= start + len(item.raw)) \
-                    and not _inside(item, parts):
+                    and not _inside(item, parts) and not (self._empty and self._empty[0][0] <= start + len(item.raw)):
                 continue
             pieces = self.pieces(item)
             if pieces is not None:
@@ -123,7 +133,31 @@ class RecordTrail:
         return begin
 
     def pieces(self, item: Item) -> list[Piece] | None:
-        """The item's pieces, the first at the item's time; None for one piece without comments."""
+        """The item's pieces, the first at the item's time; None for one piece without comments. An empty
+        record read after one of its bytes (before its first: the input's first) is a piece of no byte there."""
+        found = self._pieces(item)
+        empty = self._empty
+        end = item.offset + len(item.raw)
+        if not empty or empty[0][0] > end:
+            return found
+        split = found or [(item.length, item.time, (), item.offset)]
+        while empty and empty[0][0] <= end:
+            offset, time, comments = empty.popleft()
+            at = max(offset - item.offset, 0)
+            ended = [index for index, piece in enumerate(split) if piece[0] == at]
+            if ended or at == 0:
+                index = ended[-1] + 1 if ended else 0
+            else:  # (inside a piece: it is cut there, its second part at the time of the read after)
+                index = next(index for index, piece in enumerate(split) if piece[0] > at)
+                stop, was, texts, first = split[index]
+                after = next((when for begin, when in reversed(self._parts) if begin <= offset), was)
+                after = Stamp(after) if type(after) is int else after
+                split[index:index + 1] = [(at, was, texts, first), (stop, after, (), offset)]
+                index += 1
+            split.insert(index, (at, time, comments, max(offset, item.offset)))
+        return split
+
+    def _pieces(self, item: Item) -> list[Piece] | None:
         start = item.offset
         end = start + len(item.raw)
         parts, commented = self._parts, self._commented

@@ -86,16 +86,35 @@ def test_both_ends_in_one_log_show_each_frame_once(tmp_path: Path) -> None:
 
 def test_both_ends_told_by_their_decodes(tmp_path: Path) -> None:
     """The log started after both connected (no Server listening. nor Connecting to): the first read back is
-    the server's decode of a request, with no client known yet, so the first request is there twice; from the
-    client's first decoded response on, each frame once."""
+    the server's decode of a request, with no client known yet; it is held until the client's first decoded
+    response tells both ends, then passed over. Before, the first request was there twice."""
     lines = BOTH.splitlines(keepends=True)
     cut = "".join(lines[lines.index(next(line for line in lines if " send: " in line)):])
-    out = run_cli(["-n", _log(tmp_path, cut)])[1].splitlines()
-    assert [line[24:64].rstrip() for line in out] == [
-        "request   Read Holding Registers 0..2 (3", "request   Read Holding Registers 0..2 (3",
-        "response  Read Holding Registers 0..2 (3", "request   Read Holding Registers 0..2 (3",
-        "response  Read Holding Registers 0..2 (3", "request   Write Single Register 5 = 1234",
-        "response  Write Single Register 5 = 1234"]
+    assert run_cli(["-n", _log(tmp_path, cut)]) == (0, ONCE, "")
+    assert run_cli(["-n", "-"], stdin=cut.encode()) == (0, ONCE, "")
+
+
+def test_a_gateway_keeps_the_bytes_it_forwards(tmp_path: Path) -> None:
+    """A one-process gateway (its server end reads a client's FC6 write from another process, its client end
+    forwards the exact bytes to the device, whose echo it reads and passes back): four frames, the device's echo
+    among them, though the log shows both ends and each recv after the first reads back what was sent before it.
+    Its first recv read what no send gave: not a log of both ends of one link."""
+    write = "0x7 0x6 0x0 0x5 0x4 0xd2 0x1b 0x30"
+    log = (f"2026-12-07 17:30:00,000 INFO  base:91 Server listening.\n"
+           f"2026-12-07 17:30:00,001 DEBUG base:56 Connecting to 127.0.0.1:15078.\n"
+           f"2026-12-07 17:30:01,000 DEBUG transport:308 recv: {write} extra data: \n"
+           f"2026-12-07 17:30:01,000 DEBUG decoders:86 decoded PDU function_code(6 sub -1) -> "
+           f"WriteSingleRegisterRequest(dev_id=0, address=5, registers=[1234])\n"
+           f"2026-12-07 17:30:01,001 DEBUG transport:357 send: {write}\n"
+           f"2026-12-07 17:30:01,020 DEBUG transport:308 recv: {write} extra data: \n"
+           f"2026-12-07 17:30:01,020 DEBUG decoders:86 decoded PDU function_code(6 sub -1) -> "
+           f"WriteSingleRegisterResponse(dev_id=0, address=5, registers=[1234])\n"
+           f"2026-12-07 17:30:01,021 DEBUG transport:357 send: {write}\n")
+    assert run_cli(["-n", _log(tmp_path, log)]) == (0, (
+        "     1     0.000000   7 request   Write Single Register 5 = 1234  CRC ok\n"
+        "     2     0.001000   7 response  Write Single Register 5 = 1234 [#1, 1.0 ms]  CRC ok\n"
+        "     3     0.020000   7 request   Write Single Register 5 = 1234  CRC ok\n"
+        "     4     0.021000   7 response  Write Single Register 5 = 1234 [#3, 1.0 ms]  CRC ok\n"), "")
 
 
 def test_one_end_logs_keep_their_echoes(tmp_path: Path) -> None:
