@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any
 from dissector.framing.timing import LineTiming, silence_before
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import LINKTYPE_USER0, PartChunk
+from dissector.sources.pcap import empty_records
 
 if TYPE_CHECKING:
     from dissector.sources.trail import RecordTrail
@@ -137,6 +138,7 @@ class BlockBuilder:
                 if time is not None and not isinstance(time, Stamp):
                     break  # (never from a pcap reader: its times are stamps)
                 previous = (previous[0], time.ns if time is not None else 0, time is not None)  # type: ignore[union-attr]
+            begun, offset = position, self.offset
             payload, starts, times, flags, position, stop, records, self.offset, last, span = scan(
                 buffer, position, big_endian, reader.units, self.offset, previous, self.timing.char_time,
                 self.timing.t35, reader.chunk_size,
@@ -159,10 +161,15 @@ class BlockBuilder:
                     empties = (buffer, position)
             if span is not None:
                 self._span(*span)
+            empty: list[tuple[int, int | None]] = []  # (the records it passed over that -w writes again: sources/trail.py)
+            if trail is not None and trail.times and records > len(flags):
+                empty = empty_records(buffer, begun, position, reader, offset)
             if flags:
                 if trail is not None:
-                    observe_block(trail, block)
+                    observe_block(trail, block, empty)
                 yield block
+            elif empty and trail is not None:
+                trail.observe_reads([], [], self.offset, empty)
             if stop or not data:
                 break
         if empties is not None:
@@ -185,13 +192,13 @@ def last_record_time(buffer: bytes, end: int, reader: Any) -> Stamp | None:
     return time
 
 
-def observe_block(trail: RecordTrail, block: Block) -> None:
+def observe_block(trail: RecordTrail, block: Block, empty: list[tuple[int, int | None]] | None = None) -> None:
     """A block read in bulk (a pcap's records: no comments) to the trail, as trail.observe takes chunks:
     where each read begins and, for -w, its time (integer ns: a Stamp is made only where an item is cut)."""
     times = None
     if trail.times:
         times = [ns if flag & TIMED else None for ns, flag in zip(block.times, block.flags)]
-    trail.observe_reads(block.starts, times, block.starts[0] + len(block.data))
+    trail.observe_reads(block.starts, times, block.starts[0] + len(block.data), empty or ())
 
 
 def source_blocks(source: Any, timing: LineTiming, builder: BlockBuilder | None = None,
