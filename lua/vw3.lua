@@ -2488,17 +2488,15 @@ local DATA = {
           "status 0x",
           { "hex", "status", 4 },
           ", ",
-          { "dec", "event_count" },
-          " events",
+          { "count", "event_count", "event" },
         },
         ["event_log"] = {
           "status 0x",
           { "hex", "status", 4 },
           ", ",
-          { "dec", "event_count" },
-          " events, ",
-          { "dec", "message_count" },
-          " messages",
+          { "count", "event_count", "event" },
+          ", ",
+          { "count", "message_count", "message" },
         },
         ["written"] = {
           { "span" },
@@ -2520,8 +2518,7 @@ local DATA = {
           { "write", "write_start", "write_quantity" },
         },
         ["fifo"] = {
-          { "dec", "fifo_count" },
-          " values",
+          { "count", "fifo_count", "value" },
           { "fifo", "fifo_count", "values" },
         },
         ["pointer"] = {
@@ -4187,7 +4184,7 @@ function DATA.lifters(
   }
 end
 end
-function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, span_text, BY_NAME)
+function DATA.info_forms(DECIMAL, DIAGNOSTICS, count_text, data_text, fifo_values, single_text, span_text, BY_NAME)
   local format = string.format
   local form = {} -- (by form; by code and kind too where its layouts place its fields apart)
   form.coil = function(f, b, base, last, st, device)
@@ -4220,19 +4217,19 @@ function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_te
   end
   form.counter = function(f, b, base, last, st, device)
     return "status 0x" .. format("%04X", b[base + 2] * 256 + b[base + 3]) .. ", "
-      .. DECIMAL[b[base + 4] * 256 + b[base + 5]] .. " events"
+      .. count_text(b[base + 4] * 256 + b[base + 5], "event")
   end
   form.event_log = function(f, b, base, last, st, device)
     return "status 0x" .. format("%04X", b[base + 3] * 256 + b[base + 4]) .. ", "
-      .. DECIMAL[b[base + 5] * 256 + b[base + 6]] .. " events, " .. DECIMAL[b[base + 7] * 256 + b[base + 8]]
-      .. " messages"
+      .. count_text(b[base + 5] * 256 + b[base + 6], "event") .. ", "
+      .. count_text(b[base + 7] * 256 + b[base + 8], "message")
   end
   form.written = function(f, b, base, last, st, device)
     return span_text(f) .. " written"
   end
   form.fifo = function(f, b, base, last, st, device)
     local fifo_count = b[base + 4] * 256 + b[base + 5]
-    return DECIMAL[fifo_count] .. " values" .. fifo_values(b, fifo_count, base + 6, last)
+    return count_text(fifo_count, "value") .. fifo_values(b, fifo_count, base + 6, last)
   end
   return {
     [5] = { request = form.coil, response = form.coil },
@@ -10504,7 +10501,7 @@ end
 -- Each form by function code, then kind: written out by the code generator from describe.TEXT_FORMS's
 -- steps as DATA.fields.info states them, each field read where its layout places it (DATA.info_forms,
 -- codegen/display_lua.py), calling the helpers above; a describer of BY_NAME by its name.
-local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, span_text, BY_NAME)
+local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, count_text, data_text, fifo_values, single_text, span_text, BY_NAME)
 
 -- NAMING[fn][kind]: the forms that name a register as the frame's device does (a `single` step): their
 -- text needs the device (summary's st or device). (DATA.info_naming, codegen/display_lua.py)
