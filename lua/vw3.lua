@@ -2488,17 +2488,15 @@ local DATA = {
           "status 0x",
           { "hex", "status", 4 },
           ", ",
-          { "dec", "event_count" },
-          " events",
+          { "count", "event_count", "event" },
         },
         ["event_log"] = {
           "status 0x",
           { "hex", "status", 4 },
           ", ",
-          { "dec", "event_count" },
-          " events, ",
-          { "dec", "message_count" },
-          " messages",
+          { "count", "event_count", "event" },
+          ", ",
+          { "count", "message_count", "message" },
         },
         ["written"] = {
           { "span" },
@@ -2520,8 +2518,7 @@ local DATA = {
           { "write", "write_start", "write_quantity" },
         },
         ["fifo"] = {
-          { "dec", "fifo_count" },
-          " values",
+          { "count", "fifo_count", "value" },
           { "fifo", "fifo_count", "values" },
         },
         ["pointer"] = {
@@ -4187,7 +4184,7 @@ function DATA.lifters(
   }
 end
 end
-function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, span_text, BY_NAME)
+function DATA.info_forms(DECIMAL, DIAGNOSTICS, count_text, data_text, fifo_values, single_text, span_text, BY_NAME)
   local format = string.format
   local form = {} -- (by form; by code and kind too where its layouts place its fields apart)
   form.coil = function(f, b, base, last, st, device)
@@ -4220,19 +4217,19 @@ function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_te
   end
   form.counter = function(f, b, base, last, st, device)
     return "status 0x" .. format("%04X", b[base + 2] * 256 + b[base + 3]) .. ", "
-      .. DECIMAL[b[base + 4] * 256 + b[base + 5]] .. " events"
+      .. count_text(b[base + 4] * 256 + b[base + 5], "event")
   end
   form.event_log = function(f, b, base, last, st, device)
     return "status 0x" .. format("%04X", b[base + 3] * 256 + b[base + 4]) .. ", "
-      .. DECIMAL[b[base + 5] * 256 + b[base + 6]] .. " events, " .. DECIMAL[b[base + 7] * 256 + b[base + 8]]
-      .. " messages"
+      .. count_text(b[base + 5] * 256 + b[base + 6], "event") .. ", "
+      .. count_text(b[base + 7] * 256 + b[base + 8], "message")
   end
   form.written = function(f, b, base, last, st, device)
     return span_text(f) .. " written"
   end
   form.fifo = function(f, b, base, last, st, device)
     local fifo_count = b[base + 4] * 256 + b[base + 5]
-    return DECIMAL[fifo_count] .. " values" .. fifo_values(b, fifo_count, base + 6, last)
+    return count_text(fifo_count, "value") .. fifo_values(b, fifo_count, base + 6, last)
   end
   return {
     [5] = { request = form.coil, response = form.coil },
@@ -10512,7 +10509,7 @@ end
 -- Each form by function code, then kind: written out by the code generator from describe.TEXT_FORMS's
 -- steps as DATA.fields.info states them, each field read where its layout places it (DATA.info_forms,
 -- codegen/display_lua.py), calling the helpers above; a describer of BY_NAME by its name.
-local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, span_text, BY_NAME)
+local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, count_text, data_text, fifo_values, single_text, span_text, BY_NAME)
 
 -- NAMING[fn][kind]: the forms that name a register as the frame's device does (a `single` step): their
 -- text needs the device (summary's st or device). (DATA.info_naming, codegen/display_lua.py)
@@ -10748,15 +10745,15 @@ package.preload["vw3.show"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, ByteArray, DATA, DIAGNOSTICS, EXCEPTION = AUTO, ByteArray, DATA, DIAGNOSTICS, EXCEPTION
-local KIND_NUMBER, MASK_WRITES, NOISE, NO_INTERPRETATION = KIND_NUMBER, MASK_WRITES, NOISE, NO_INTERPRETATION
-local PLC_LABELS, REQUEST, START_WORDS, add_pdu = PLC_LABELS, REQUEST, START_WORDS, add_pdu
-local add_register, add_said, add_text, bit_at, check_at = add_register, add_said, add_text, bit_at, check_at
-local concat, count_text, device_of, ended, ex = concat, count_text, device_of, ended, ex
+local KIND_NUMBER, LIFT_OF, MASK_WRITES, NOISE = KIND_NUMBER, LIFT_OF, MASK_WRITES, NOISE
+local NO_INTERPRETATION, PLC_LABELS, REQUEST, START_WORDS = NO_INTERPRETATION, PLC_LABELS, REQUEST, START_WORDS
+local add_pdu, add_register, add_said, add_text, bit_at = add_pdu, add_register, add_said, add_text, bit_at
+local check_at, concat, count_text, device_of, ended, ex = check_at, concat, count_text, device_of, ended, ex
 local exception_name, finish_safely, format, frame_bytes = exception_name, finish_safely, format, frame_bytes
 local frame_range, function_name, inferred_registers = frame_range, function_name, inferred_registers
 local ipairs, keep_time, lane, math, pack, pairs, pf = ipairs, keep_time, lane, math, pack, pairs, pf
 local pinfo_cols, plc_base, proto, record_ns, register_view = pinfo_cols, plc_base, proto, record_ns, register_view
-local say, summary, tostring, tree_text, tvb_raw, type = say, summary, tostring, tree_text, tvb_raw, type
+local say, summary, tostring, tree_text, tvb_raw, type, u16 = say, summary, tostring, tree_text, tvb_raw, type, u16
 local unseen = unseen
 local UNMATCHED = say("unmatched", {}) -- (data/modbus.toml [texts])
 -- The window's start or quantity (what) on the bytes its lifting rule read it from; generated and on no
@@ -10773,7 +10770,8 @@ local function add_window(t, tvb, f, field, what, value)
 end
 
 -- The addresses a frame names without carrying their values (a read request's window, FC15's and FC16's
--- answers, FC22, FC23's read window), each a hidden vw3.reg.address (vw3.bit.address: a coil function's),
+-- answers, FC22, FC23's read window and its request's written window where it writes none, as FC16's of
+-- quantity 0: its lifting rule's write_window), each a hidden vw3.reg.address (vw3.bit.address: a coil function's),
 -- as Wireshark's hidden ip.addr: `vw3.reg.address == 8401` finds the request that asked for 8401 too, as
 -- vw3-decode's `address == 8401` (the same addresses: render/filter_match.py item_elements, at most 2000).
 -- (BIT_WINDOW[fn]: its request or answer carries bits, its lifting rule's values "bits" or "coil";
@@ -10790,21 +10788,31 @@ local function add_named(t, tvb, f, full, base)
   if MASK_WRITES[f.fn] and not f.malformed then return end -- (FC22: its register is shown, tree.lua add_pdu)
   local field, at = BIT_WINDOW[f.fn] and pf.bit_address or pf.reg_address, tvb:range(f.at, 0)
   local labels = base ~= nil and not BIT_WINDOW[f.fn] and PLC_LABELS[base] or nil
-  local named = true
-  for address = start, start + math.min(math.max(quantity, 1), 2000) - 1 do
-    address = address % 0x10000
-    if first == nil or (address - first) % 0x10000 >= count then
-      if named then
-        local item = t:add(field, at, address)
-        -- (faked, the frame's item handed back: an invisible tree that needs no such field, unseen.add)
-        named = not (full == "unseen" and item.len ~= 0)
-        if named then item:set_hidden() end
+  local named, windows = true, { start, quantity }
+  local rule = f.kind == REQUEST and not f.malformed and LIFT_OF[REQUEST][f.fn]
+  if rule and rule.write_window then
+    local b, places = frame_bytes(f, tvb), DATA.field_places[DATA.rules.by_code[REQUEST][f.fn].layout]
+    windows[3], windows[4] = u16(b, places[rule.write_window[1]].at), u16(b, places[rule.write_window[2]].at)
+  end
+  local size = math.min(math.max(quantity, 1), 2000)
+  for w = 1, #windows, 2 do
+    for address = windows[w], windows[w] + math.min(math.max(windows[w + 1], 1), 2000) - 1 do
+      address = address % 0x10000
+      -- (not a value carried, nor, in the written window, an address of the read one named already)
+      if (first == nil or (address - first) % 0x10000 >= count)
+          and (w == 1 or (address - start) % 0x10000 >= size) then
+        if named then
+          local item = t:add(field, at, address)
+          -- (faked, the frame's item handed back: an invisible tree that needs no such field, unseen.add)
+          named = not (full == "unseen" and item.len ~= 0)
+          if named then item:set_hidden() end
+        end
+        if labels ~= nil then
+          local item = t:add(pf.reg_label, at, labels[address])
+          if full == "unseen" and item.len ~= 0 then labels = nil else item:set_hidden() end
+        end
+        if not named and labels == nil then return end
       end
-      if labels ~= nil then
-        local item = t:add(pf.reg_label, at, labels[address])
-        if full == "unseen" and item.len ~= 0 then labels = nil else item:set_hidden() end
-      end
-      if not named and labels == nil then return end
     end
   end
 end

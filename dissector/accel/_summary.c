@@ -1166,6 +1166,12 @@ static int info_text(Engine *e, Slave *s, const InfoForm *info, const Lifted *li
         case STEP_DEC:
             out_uint(&e->out, value, 0);
             break;
+        case STEP_COUNT: /* describe.count_text: `1 event`, `2 events` (the noun in step->text) */
+            out_uint(&e->out, value, 0);
+            out_put(&e->out, " ", 1);
+            out_put(&e->out, step->text, (size_t)step->length);
+            if (value != 1) out_put(&e->out, "s", 1);
+            break;
         case STEP_HEX:
             out_number(&e->out, value, 16, step->number, '0');
             break;

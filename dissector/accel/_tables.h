@@ -328,13 +328,13 @@ static const Lift response_lift[HANDLED] = {
     {0, 0, 0, 0, {4, 0}, {2, 0}, {8, -1}, {1, 0}, 0, 2, 2, 2, 1, 4, 2, 2, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, /* 24 */
     {0, 0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, /* 43 */
 };
-enum { STEP_END, STEP_NONE, STEP_TEXT, STEP_UNSPACE, STEP_SPAN, STEP_PLAIN_SPAN, STEP_LABEL, STEP_BITS, STEP_VALUES, STEP_WRITE, STEP_COIL, STEP_SINGLE, STEP_DEC, STEP_HEX, STEP_SUBFUNCTION, STEP_DATA, STEP_FIFO };
+enum { STEP_END, STEP_NONE, STEP_TEXT, STEP_UNSPACE, STEP_SPAN, STEP_PLAIN_SPAN, STEP_LABEL, STEP_BITS, STEP_VALUES, STEP_WRITE, STEP_COIL, STEP_SINGLE, STEP_DEC, STEP_HEX, STEP_SUBFUNCTION, STEP_DATA, STEP_FIFO, STEP_COUNT };
 /* The Info column's forms (codegen/c_rules.py TEXT_FORMS, describe.py's describers): the steps of each,
  * up to STEP_END. A step writes `text` (STEP_TEXT, `length` bytes) or a part of the frame: its window,
  * bits, registers, or a printed field (`field`: its index in InfoForm.at, -1 none) as a number (`number`:
- * STEP_HEX's least digits, STEP_FIFO's values field). */
+ * STEP_HEX's least digits, STEP_FIFO's values field; STEP_COUNT's noun in `text`). */
 typedef struct { int step, field, number; const char *text; int length; } Step;
-#define MAX_STEPS 8
+#define MAX_STEPS 7
 static const Step form_steps[][MAX_STEPS] = {
     {{STEP_NONE, -1, 0, NULL, 0}}, /* none */
     {{STEP_UNSPACE, -1, 0, NULL, 0}}, /* name */
@@ -345,13 +345,13 @@ static const Step form_steps[][MAX_STEPS] = {
     {{STEP_LABEL, -1, 0, NULL, 0}, {STEP_SINGLE, 0, 0, NULL, 0}}, /* single */
     {{STEP_SPAN, -1, 0, NULL, 0}, {STEP_TEXT, -1, 0, " written", 8}}, /* written */
     {{STEP_TEXT, -1, 0, "status 0x", 9}, {STEP_HEX, 0, 2, NULL, 0}}, /* status */
-    {{STEP_TEXT, -1, 0, "status 0x", 9}, {STEP_HEX, 0, 4, NULL, 0}, {STEP_TEXT, -1, 0, ", ", 2}, {STEP_DEC, 1, 0, NULL, 0}, {STEP_TEXT, -1, 0, " events", 7}}, /* counter */
-    {{STEP_TEXT, -1, 0, "status 0x", 9}, {STEP_HEX, 0, 4, NULL, 0}, {STEP_TEXT, -1, 0, ", ", 2}, {STEP_DEC, 1, 0, NULL, 0}, {STEP_TEXT, -1, 0, " events, ", 9}, {STEP_DEC, 2, 0, NULL, 0}, {STEP_TEXT, -1, 0, " messages", 9}}, /* event_log */
+    {{STEP_TEXT, -1, 0, "status 0x", 9}, {STEP_HEX, 0, 4, NULL, 0}, {STEP_TEXT, -1, 0, ", ", 2}, {STEP_COUNT, 1, 0, "event", 5}}, /* counter */
+    {{STEP_TEXT, -1, 0, "status 0x", 9}, {STEP_HEX, 0, 4, NULL, 0}, {STEP_TEXT, -1, 0, ", ", 2}, {STEP_COUNT, 1, 0, "event", 5}, {STEP_TEXT, -1, 0, ", ", 2}, {STEP_COUNT, 2, 0, "message", 7}}, /* event_log */
     {{STEP_HEX, 0, 2, NULL, 0}, {STEP_TEXT, -1, 0, "h ", 2}, {STEP_SUBFUNCTION, 0, 0, NULL, 0}, {STEP_DATA, 1, 0, NULL, 0}}, /* diagnostics */
     {{STEP_DEC, 0, 0, NULL, 0}, {STEP_TEXT, -1, 0, " AND 0x", 7}, {STEP_HEX, 1, 4, NULL, 0}, {STEP_TEXT, -1, 0, " OR 0x", 6}, {STEP_HEX, 2, 4, NULL, 0}}, /* mask */
     {{STEP_TEXT, -1, 0, "pointer ", 8}, {STEP_DEC, 0, 0, NULL, 0}}, /* pointer */
     {{STEP_TEXT, -1, 0, "read ", 5}, {STEP_PLAIN_SPAN, -1, 0, NULL, 0}, {STEP_TEXT, -1, 0, ", write ", 8}, {STEP_WRITE, 0, 1, NULL, 0}}, /* read_write */
-    {{STEP_DEC, 0, 0, NULL, 0}, {STEP_TEXT, -1, 0, " values", 7}, {STEP_FIFO, 0, 1, NULL, 0}}, /* fifo */
+    {{STEP_COUNT, 0, 0, "value", 5}, {STEP_FIFO, 0, 1, NULL, 0}}, /* fifo */
     {{STEP_NONE, -1, 0, NULL, 0}}, /* python */
 };
 /* What the engine does with a transaction of a compiled code (codegen/c_rules.py):

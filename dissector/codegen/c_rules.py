@@ -37,18 +37,23 @@ ADU_HEAD = 2  # slave and function code before the grammar's data
 TEXT_FORMS = describe.TEXT_FORMS
 FORMS = tuple(TEXT_FORMS)
 STEPS = ("end", "none", "text", "unspace", "span", "plain_span", "label", "bits", "values", "write", "coil", "single", "dec",
-         "hex", "subfunction", "data", "fifo")
+         "hex", "subfunction", "data", "fifo", "count")
 MAX_STEPS = max(len(steps) for steps in TEXT_FORMS.values()) + 1  # and its STEP_END
 # The kinds of frame the engine shows by their numbers (KIND_*): those render/bustiming.py gives the engine's
 # Stats.bus_item (accel/framespath.py reads its records' answer kinds by them too).
 KINDS = {number: kind for kind, number in bustiming._KINDS.items()}
 
 
+def _arguments(step: tuple[str | int, ...]) -> tuple[str | int, ...]:
+    """A step's fields and number: its arguments but a noun (describe.NOUN_STEPS, the step's text)."""
+    return step[1:-1] if step[0] in describe.NOUN_STEPS else step[1:]
+
+
 def _printed(form: str) -> list[str]:
     """The fields a form prints, in the order its steps name them (at most 3)."""
     names: list[str] = []
     for step in TEXT_FORMS[form]:
-        for arg in step[1:] if isinstance(step, tuple) else ():
+        for arg in _arguments(step) if isinstance(step, tuple) else ():
             if isinstance(arg, str) and arg not in names:
                 names.append(arg)
     return names
@@ -56,12 +61,14 @@ def _printed(form: str) -> list[str]:
 
 def _step(step: str | tuple[str | int, ...], printed: list[str]) -> str:
     """A Step of form_steps: {STEP_*, its first field's index (-1: none), its number or second field's
-    index, text, its length in bytes}."""
+    index, text (STEP_TEXT's, a noun step's noun), its length in bytes}."""
     if isinstance(step, str):
         return f"{{STEP_TEXT, -1, 0, {c_string(step)}, {len(step.encode())}}}"
-    fields = [printed.index(arg) for arg in step[1:] if isinstance(arg, str)]
-    number = [arg for arg in step[1:] if isinstance(arg, int)]
-    return f"{{STEP_{str(step[0]).upper()}, {(fields or [-1])[0]}, {(number or fields[1:] or [0])[0]}, NULL, 0}}"
+    fields = [printed.index(arg) for arg in _arguments(step) if isinstance(arg, str)]
+    number = [arg for arg in _arguments(step) if isinstance(arg, int)]
+    noun = str(step[-1]) if step[0] in describe.NOUN_STEPS else None
+    return (f"{{STEP_{str(step[0]).upper()}, {(fields or [-1])[0]}, {(number or fields[1:] or [0])[0]}, "
+            f"{c_string(noun)}, {len(noun.encode()) if noun else 0}}}")
 
 
 def c_string(text: str | None) -> str:
@@ -256,7 +263,7 @@ typedef struct {
 STEP_STRUCT = """/* The Info column's forms (codegen/c_rules.py TEXT_FORMS, describe.py's describers): the steps of each,
  * up to STEP_END. A step writes `text` (STEP_TEXT, `length` bytes) or a part of the frame: its window,
  * bits, registers, or a printed field (`field`: its index in InfoForm.at, -1 none) as a number (`number`:
- * STEP_HEX's least digits, STEP_FIFO's values field). */
+ * STEP_HEX's least digits, STEP_FIFO's values field; STEP_COUNT's noun in `text`). */
 typedef struct { int step, field, number; const char *text; int length; } Step;"""
 
 

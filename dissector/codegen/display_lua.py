@@ -21,7 +21,7 @@ from dissector.errors import GenerateError
 from dissector.protocol import table
 
 # tree.lua's helpers the forms call, and its describers of describe._BY_NAME: DATA.info_forms's arguments.
-HELPERS = ("DECIMAL", "DIAGNOSTICS", "data_text", "fifo_values", "single_text", "span_text", "BY_NAME")
+HELPERS = ("DECIMAL", "DIAGNOSTICS", "count_text", "data_text", "fifo_values", "single_text", "span_text", "BY_NAME")
 # (no field's local may hide them or the function's own names)
 TAKEN = frozenset({*HELPERS, "format", "form", "coil", "f", "b", "base", "last", "st", "device"})
 LUA_KEYWORDS = frozenset("""and break do else elseif end false for function goto if in local nil not or repeat
@@ -77,6 +77,8 @@ def form_body(form: str, steps: list[Any], places: dict[str, tuple[int, int | No
             parts.append(f"DECIMAL[{value(step[1])}]")
         elif what == "hex":
             parts.append(f'format("%0{step[2]}X", {value(step[1])})')
+        elif what == "count":  # (describe.count_text: `1 event`, `2 events`)
+            parts.append(f"count_text({value(step[1])}, {lua_literal(step[2])})")
         elif what == "coil":  # (describe._coil)
             body.append(f"local coil = {value(step[1])}")
             parts.append('(coil == 0xFF00 and " = ON" or coil == 0 and " = OFF"'

@@ -59,7 +59,7 @@ def start_words() -> dict[int, dict[str, str]]:
 # window alone is that text already (SPAN_ALONE, no form then).
 # FC23's request says both its windows (plain_span, write), its values left out as FC16's are: the text
 # vw3-decode gives where it writes none (`read 0, write 5 (0)`).
-PLUGIN_STEPS = frozenset({"hex", "dec", "coil", "subfunction", "data", "fifo", "label", "span", "single",
+PLUGIN_STEPS = frozenset({"hex", "dec", "count", "coil", "subfunction", "data", "fifo", "label", "span", "single",
                           "plain_span", "write"})
 SPAN_ALONE = [("span",)]
 # The describers of describe._BY_NAME the plugin has too (tree.lua BY_NAME), by name.

@@ -155,9 +155,10 @@ TEXT_FORMS: dict[str, list[str | tuple[str | int, ...]]] = {
     "single": [("label",), ("single", "value")],
     "written": [("span",), " written"],
     "status": ["status 0x", ("hex", "status", 2)],  # FC7's byte
-    "counter": ["status 0x", ("hex", "status", 4), ", ", ("dec", "event_count"), " events"],
-    "event_log": ["status 0x", ("hex", "status", 4), ", ", ("dec", "event_count"), " events, ", ("dec", "message_count"),
-                  " messages"],
+    # `1 event`, `2 events`: a count step's field and its noun (count_text)
+    "counter": ["status 0x", ("hex", "status", 4), ", ", ("count", "event_count", "event")],
+    "event_log": ["status 0x", ("hex", "status", 4), ", ", ("count", "event_count", "event"), ", ",
+                  ("count", "message_count", "message")],
     # `00h Return Query Data data 0a0b… (+4 bytes)`, `0Bh Return Bus Message Count = 7`
     "diagnostics": [("hex", "subfunction", 2), "h ", ("subfunction", "subfunction"), ("data", "data")],
     # the address as sent, even PLC style
@@ -165,10 +166,11 @@ TEXT_FORMS: dict[str, list[str | tuple[str | int, ...]]] = {
     "pointer": ["pointer ", ("dec", "address")],
     # PLC style: as its answer shows it; `write 5 (0)` writing none, as FC16's `5 (0)`
     "read_write": ["read ", ("plain_span",), ", write ", ("write", "write_start", "write_quantity")],
-    # `10 values: 0 100 … (+2)`, `0 values` (the step writes the colon before values it shows)
-    "fifo": [("dec", "fifo_count"), " values", ("fifo", "fifo_count", "values")],
+    # `10 values: 0 100 … (+2)`, `1 value: 7`, `0 values` (the step writes the colon before values it shows)
+    "fifo": [("count", "fifo_count", "value"), ("fifo", "fifo_count", "values")],
     "python": [("none",)],
 }
+NOUN_STEPS = frozenset({"count"})  # the steps whose last argument is a noun they print, not a field
 # The form of each describer (table.Function.text) in each direction, (request, response); a pair where it
 # depends on the data the code carries (bits, registers). The others are described by _BY_NAME below.
 DESCRIBER_FORMS: dict[str, tuple[str | tuple[str, str], str | tuple[str, str]]] = {
@@ -264,6 +266,8 @@ def _step(step: tuple[str | int, ...]) -> Callable[[Frame], str]:
         return lambda frame: of(frame, frame.fields[args[0]])
     if what == "hex":
         return lambda frame: f"{frame.fields[args[0]]:0{args[1]}X}"
+    if what == "count":  # (its second argument is the noun, not a field)
+        return lambda frame: count_text(frame.fields[args[0]], str(args[1]))
     if what == "write":  # FC23's: its values, or where none are sent its window (`5 (0)`, `40006 (0)`), never nothing
         return lambda frame: values_text(frame) or _write_span(frame, frame.fields[args[0]], frame.fields[args[1]])
     if what == "fifo":  # the values sent (the first MAX_FIFO_VALUES), whatever their count says

@@ -209,7 +209,9 @@ def _label_base(first: str, start: int) -> int | None:
     return None
 
 
-MAX_SYNTHESIZED = 2000  # address-only entries made for one frame (the spec's largest read quantity)
+MAX_SYNTHESIZED = 2000  # address-only entries made for one window (the spec's largest read quantity)
+# The requests that write a window of their own (FC23: write_start, write_quantity): its addresses are named too.
+WRITE_WINDOWS = table.write_windows()
 
 
 def item_elements(item: Item) -> list[dict[str, Any]]:
@@ -226,14 +228,20 @@ def item_elements(item: Item) -> list[dict[str, Any]]:
     span = item.get("span_label")
     labelled = isinstance(span, str) and item.get("function") not in BIT_WINDOWS
     base = _label_base(span.split("..", 1)[0], int(start)) if labelled else None  # type: ignore[union-attr]
-    synthesized = [
-        {"address": address & 0xFFFF}
-        if base is None
-        else {"address": address & 0xFFFF, "label": plc_label(base, address)}
-        # A quantity of 0 (a malformed read) still names its start address, as tshark's reference_num.
-        for address in range(int(start), int(start) + min(max(int(quantity), 1), MAX_SYNTHESIZED))
-        if address & 0xFFFF not in known
-    ]
+    windows = [(int(start), int(quantity))]
+    fields, write = item.get("fields"), WRITE_WINDOWS.get(item.get("function"))
+    if write and item.get("kind") == "request" and isinstance(fields, dict) and all(
+            is_number(fields.get(name)) for name in write):
+        windows.append((int(fields[write[0]]), int(fields[write[1]])))
+    synthesized: list[dict[str, Any]] = []
+    for first, count in windows:
+        # A quantity of 0 (a malformed read, FC23 writing none) still names its start address, as tshark's
+        # reference_num (and FC16's of quantity 0 here).
+        for address in range(first, first + min(max(count, 1), MAX_SYNTHESIZED)):
+            if address & 0xFFFF not in known:
+                known.add(address & 0xFFFF)
+                synthesized.append({"address": address & 0xFFFF} if base is None
+                                   else {"address": address & 0xFFFF, "label": plc_label(base, address)})
     return elements + synthesized if synthesized else elements
 
 

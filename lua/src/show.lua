@@ -16,7 +16,8 @@ local function add_window(t, tvb, f, field, what, value)
 end
 
 -- The addresses a frame names without carrying their values (a read request's window, FC15's and FC16's
--- answers, FC22, FC23's read window), each a hidden vw3.reg.address (vw3.bit.address: a coil function's),
+-- answers, FC22, FC23's read window and its request's written window where it writes none, as FC16's of
+-- quantity 0: its lifting rule's write_window), each a hidden vw3.reg.address (vw3.bit.address: a coil function's),
 -- as Wireshark's hidden ip.addr: `vw3.reg.address == 8401` finds the request that asked for 8401 too, as
 -- vw3-decode's `address == 8401` (the same addresses: render/filter_match.py item_elements, at most 2000).
 -- (BIT_WINDOW[fn]: its request or answer carries bits, its lifting rule's values "bits" or "coil";
@@ -33,21 +34,31 @@ local function add_named(t, tvb, f, full, base)
   if MASK_WRITES[f.fn] and not f.malformed then return end -- (FC22: its register is shown, tree.lua add_pdu)
   local field, at = BIT_WINDOW[f.fn] and pf.bit_address or pf.reg_address, tvb:range(f.at, 0)
   local labels = base ~= nil and not BIT_WINDOW[f.fn] and PLC_LABELS[base] or nil
-  local named = true
-  for address = start, start + math.min(math.max(quantity, 1), 2000) - 1 do
-    address = address % 0x10000
-    if first == nil or (address - first) % 0x10000 >= count then
-      if named then
-        local item = t:add(field, at, address)
-        -- (faked, the frame's item handed back: an invisible tree that needs no such field, unseen.add)
-        named = not (full == "unseen" and item.len ~= 0)
-        if named then item:set_hidden() end
+  local named, windows = true, { start, quantity }
+  local rule = f.kind == REQUEST and not f.malformed and LIFT_OF[REQUEST][f.fn]
+  if rule and rule.write_window then
+    local b, places = frame_bytes(f, tvb), DATA.field_places[DATA.rules.by_code[REQUEST][f.fn].layout]
+    windows[3], windows[4] = u16(b, places[rule.write_window[1]].at), u16(b, places[rule.write_window[2]].at)
+  end
+  local size = math.min(math.max(quantity, 1), 2000)
+  for w = 1, #windows, 2 do
+    for address = windows[w], windows[w] + math.min(math.max(windows[w + 1], 1), 2000) - 1 do
+      address = address % 0x10000
+      -- (not a value carried, nor, in the written window, an address of the read one named already)
+      if (first == nil or (address - first) % 0x10000 >= count)
+          and (w == 1 or (address - start) % 0x10000 >= size) then
+        if named then
+          local item = t:add(field, at, address)
+          -- (faked, the frame's item handed back: an invisible tree that needs no such field, unseen.add)
+          named = not (full == "unseen" and item.len ~= 0)
+          if named then item:set_hidden() end
+        end
+        if labels ~= nil then
+          local item = t:add(pf.reg_label, at, labels[address])
+          if full == "unseen" and item.len ~= 0 then labels = nil else item:set_hidden() end
+        end
+        if not named and labels == nil then return end
       end
-      if labels ~= nil then
-        local item = t:add(pf.reg_label, at, labels[address])
-        if full == "unseen" and item.len ~= 0 then labels = nil else item:set_hidden() end
-      end
-      if not named and labels == nil then return end
     end
   end
 end

@@ -442,7 +442,7 @@ end
 -- Each form by function code, then kind: written out by the code generator from describe.TEXT_FORMS's
 -- steps as DATA.fields.info states them, each field read where its layout places it (DATA.info_forms,
 -- codegen/display_lua.py), calling the helpers above; a describer of BY_NAME by its name.
-local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, span_text, BY_NAME)
+local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, count_text, data_text, fifo_values, single_text, span_text, BY_NAME)
 
 -- NAMING[fn][kind]: the forms that name a register as the frame's device does (a `single` step): their
 -- text needs the device (summary's st or device). (DATA.info_naming, codegen/display_lua.py)
