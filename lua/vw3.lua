@@ -7292,16 +7292,18 @@ end
 
 -- The capture ends with request f awaiting its answer (the second pass: the first has read it all):
 -- pairing.py capture_ended. The capture's last record (any stream's, empty or not: recorded_until; else
--- st.times' last time, as Dissector.finish takes the later) later than the timeout after f: the master gave
--- up, unanswered; sooner, the slave may have answered after the capture stopped: not known. Returns
--- whether f is unanswered and its note (st.cut_note: an answer cut by the end, it did answer).
+-- st.times' last time, as Dissector.finish takes the later) later than the timeout after f was sent (timed_out):
+-- the master gave up, unanswered; sooner, the slave may have answered after the capture stopped: not known.
+-- Returns whether f is unanswered and its note (st.cut_note: an answer cut by the end, it did answer).
 local function ended(st, f)
   local times, timeout, cut = st.times, st.timeout, st.cut_note
   local last = times[#times]
   if recorded_until ~= nil and (not last or recorded_until > last) then last = recorded_until end
-  local waited = last and f.time and (last - f.time) / NS or nil
-  if timeout ~= nil and waited ~= nil and waited > timeout then return true, cut end
+  if timed_out(st, f, last) then return true, cut end
   if cut ~= nil then return false, cut end
+  local waited = last and f.time and (last - f.time) / NS or nil
+  -- (from f's first byte; from when it was sent where that passes the timeout: the note says "within")
+  if waited ~= nil and timeout ~= nil and waited > timeout then waited = waited - sent_in(f) end
   if timeout == nil or waited == nil or waited <= 0 then return false, PLAIN.capture_ends_unknown end
   return false, say("capture_ends_within", { waited_ms = waited * 1000, timeout_ms = timeout * 1000 })
 end

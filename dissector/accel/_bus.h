@@ -131,6 +131,9 @@ typedef struct {
     double last_end, busy, answer_end;
     Quantile gaps, turnaround, responses[256];
     unsigned long long histogram[GAP_BINS], below_t35, close[256];
+    /* BusTiming.waits: per slave the longest wait after a request was sent (its response time less `sent`,
+     * the seconds the last request took to send: an answer follows its request) */
+    double waits[256], sent;
     unsigned long long same_stamp_overlaps; /* BusTiming.same_stamp_overlaps */
     Run runs[256];
     /* The file read, from 0 (bus_line's new inputs): several read as one bus number their frames each
@@ -234,6 +237,7 @@ static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, in
     b->has_last_end = 1;
     if (kind == ITEM_NOISE) return 0;
     if (kind == KIND_REQUEST) {
+        b->sent = duration;
         if (b->has_answer_end && quantile_add(tallies, &b->turnaround, TALLY_TURNAROUND, 0, t->d - b->answer_end) < 0)
             return -1;
         b->has_answer_end = 0;
@@ -256,8 +260,11 @@ static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, in
     b->has_answer_end = 1;
     b->answer_end = end;
     if (response != NULL && crc_ok) {
+        int first = b->responses[slave].low > b->responses[slave].high; /* (no response time yet) */
         if (quantile_add(tallies, &b->responses[slave], TALLY_RESPONSES, slave, *response) < 0) return -1;
-        if (*response > CLOSE_MARGIN * b->timeout) b->close[slave]++;
+        double wait = *response - b->sent; /* (as pairing.py _late subtracts) */
+        if (first || wait > b->waits[slave]) b->waits[slave] = wait;
+        if (wait > CLOSE_MARGIN * b->timeout) b->close[slave]++;
     }
     return 0;
 }

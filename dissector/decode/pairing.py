@@ -72,22 +72,28 @@ ANSWER_IN_PART = "answer captured in part in #{number}"
 
 
 def capture_ended(request: Frame, cut: str | None = None, waited: float | None = None,
-                  timeout: float | None = None) -> None:
+                  timeout: float | None = None, sent: float = 0.0) -> None:
     """A request whose answer the capture does not hold, its last bytes heard `waited` seconds after the
-    request's (None: not known). Past the timeout the master gave up: unanswered, as when later bytes or a
-    live capture's clock tell (expire: a live line shown then, before the capture ended, says no more; nor
-    does the decode of its file). Sooner, the slave may have answered after the capture stopped: not known,
-    and not counted unanswered. The note says why (an answer cut by the end of the capture: it did answer)."""
-    if timeout is not None and waited is not None and waited > timeout:
+    request's (None: not known), `sent` seconds the request took to send. Past the timeout after it was
+    sent (the timeout rule, _late) the master gave up: unanswered, as when later bytes or a live capture's
+    clock tell (expire: a live line shown then, before the capture ended, says no more; nor does the decode
+    of its file). Sooner, the slave may have answered after the capture stopped: not known, and not counted
+    unanswered. The note says why (an answer cut by the end of the capture: it did answer)."""
+    if timeout is not None and waited is not None and waited - sent > timeout:
         request.unanswered = True
         if cut is not None:
             request.notes.append(cut)
     elif cut is not None:
         request.notes.append(cut)
-    elif waited is None or timeout is None or waited <= 0:
-        request.notes.append(text("capture_ends_unknown"))
     else:
-        request.notes.append(text("capture_ends_within", waited_ms=waited * 1000, timeout_ms=timeout * 1000))
+        # Shown from the request's first byte, as the response times; from when it was sent where that would
+        # pass the timeout (a long request on a slow line): the note says "within" the timeout, and it is.
+        if waited is not None and timeout is not None and waited > timeout:
+            waited -= sent
+        if waited is None or timeout is None or waited <= 0:
+            request.notes.append(text("capture_ends_unknown"))
+        else:
+            request.notes.append(text("capture_ends_within", waited_ms=waited * 1000, timeout_ms=timeout * 1000))
 
 
 class Pairer:
@@ -191,7 +197,7 @@ class Pairer:
                      if isinstance(item, Noise) and item.reason.startswith(CUT_ANSWER)),
                     None,
                 )
-                capture_ended(pending, cut, waited, self._timeout)
+                capture_ended(pending, cut, waited, self._timeout, pending.length * self._char_time)
         self._pending = None
         self._release(out)
         return out

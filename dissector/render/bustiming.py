@@ -17,7 +17,10 @@ interface description says: `19200 8N2`). From there:
   framing/timing.py's check, a warning on the frame;
 - master turnaround: from the end of an answer (response or exception) to the start of the next
   request: median, p95, max;
-- response times per slave against `--timeout`: the margin is timeout - the slowest response;
+- response times per slave against `--timeout`: the margin is timeout - the longest wait, and a response
+  is close to it past 90% of it, where the wait is counted from when the request was sent (its first byte's
+  time and its length at this speed, as pairing.py's timeout rule: a master starts its timeout then); the
+  response time shown is first byte to first byte (tshark's time since request);
 - outages: two or more consecutive requests to a slave left unanswered (broadcasts expect nothing,
   nor does a request the spec's server never answers, FC8 04 Force Listen Only Mode, unless an
   exception answered it: such a request is neither one of them nor ends them), from the first such
@@ -179,6 +182,10 @@ class BusTiming:
     responses: dict[int, Quantiles] = field(default_factory=dict)
     _response_tally: Coarse = field(default_factory=Coarse)  # the histograms of all of `responses`
     close_to_timeout: dict[int, int] = field(default_factory=dict)  # responses later than 90% of it
+    waits: dict[int, float] = field(default_factory=dict)  # per slave the longest wait after a request was sent
+    # The seconds the last request took to send: an answer follows its request (the pairing's order), so
+    # this is its request's, the engine's too (_bus.h `sent`: its items come in the stream's order).
+    _sent: float = 0.0
     outages: list[Outage] = field(default_factory=list)
     _runs: dict[int, Run] = field(default_factory=dict)
     _answer_end: float | None = None  # end of the last item when it was an answer
@@ -244,8 +251,9 @@ class BusTiming:
         self.turnaround = _quantiles(*state["turnaround"], store.tallies(TALLY_TURNAROUND).get(0))
         buckets = store.tallies(TALLY_RESPONSES)
         self.responses = {slave: _quantiles(low, high, buckets.get(slave))
-                          for slave, low, high, _close in state["responses"]}
-        self.close_to_timeout = {slave: close for slave, _l, _h, close in state["responses"] if close}
+                          for slave, low, high, _close, _wait in state["responses"]}
+        self.close_to_timeout = {slave: close for slave, _l, _h, close, _w in state["responses"] if close}
+        self.waits = {slave: wait for slave, _l, _h, _c, wait in state["responses"]}
         base = self._input_base
         self._runs = {slave: Run(stamp(start), stamp(end), requests, first, last, offset, base + one,
                                   base + other)
@@ -334,6 +342,7 @@ class BusTiming:
             return
         frame = item
         if kind is Kind.REQUEST:
+            self._sent = duration
             if self._answer_end is not None:
                 self.turnaround.add(time - self._answer_end)
             self._answer_end = None
@@ -350,7 +359,10 @@ class BusTiming:
             if quantiles is None:
                 quantiles = self.responses[slave] = Quantiles(self._response_tally)
             quantiles.add(response_time)
-            if response_time > CLOSE_MARGIN * self.timeout:
+            wait = response_time - self._sent  # (as pairing.py _late subtracts)
+            if slave not in self.waits or wait > self.waits[slave]:
+                self.waits[slave] = wait
+            if wait > CLOSE_MARGIN * self.timeout:
                 self.close_to_timeout[slave] = self.close_to_timeout.get(slave, 0) + 1
 
     def _backwards(self, frame: Any) -> None:
@@ -428,7 +440,7 @@ class BusTiming:
         for slave in sorted(self.responses):
             summary = self.responses[slave].summary() or {}
             responses.append({
-                "slave": slave, **summary, "margin": _round(self.timeout - summary["max"]),
+                "slave": slave, **summary, "margin": _round(self.timeout - self.waits[slave]),
                 "close_to_timeout": self.close_to_timeout.get(slave, 0),
             })
         return {

@@ -33,7 +33,7 @@ inter-frame gaps: 3; min 1.500 median 11.150 p95 981.830 max 981.833 ms
   1-2 ms: 1, 10-20 ms: 1, 500-1000 ms: 1
 master turnaround (answer end to next request, ms): median 981.833 p95 981.833 max 981.833 (1)
 slave  responses  median ms  p95 ms  max ms  margin to timeout ms  >90% of timeout
-   12          2       15.2    20.0    20.0                 980.0                0
+   12          2       15.2    20.0    20.0                 988.9                0
 outages: none
 """
 

@@ -99,7 +99,7 @@ inter-frame gaps: 3, 0 below t3.5; min 3.417 median 3.420 p95 185.698 max 185.69
   2-5 ms: 2, 100-200 ms: 1
 master turnaround (answer end to next request, ms): median 185.698 p95 185.698 max 185.698 (1)
 {RESPONSES}
-   12          2        8.0     8.0     8.0                 992.0                0
+   12          2        8.0     8.0     8.0                 996.6                0
 outages: none
 
 ==> {two}: /dev/pts/1 <==
@@ -133,7 +133,7 @@ inter-frame gaps: 5, 0 below t3.5; min 4.416 median 181.700 p95 195.417 max 195.
   2-5 ms: 1, 5-10 ms: 1, 100-200 ms: 3
 master turnaround (answer end to next request, ms): median 183.199 p95 184.698 max 184.698 (2)
 {RESPONSES}
-   12          2       10.5    12.0    12.0                 988.0                0
+   12          2       10.5    12.0    12.0                 992.6                0
 outages: none
 """
 
