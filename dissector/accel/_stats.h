@@ -675,8 +675,9 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
         if (list_put(histogram, PyLong_FromUnsignedLongLong(b->histogram[k])) < 0) Py_CLEAR(histogram);
     for (int slave = 0; responses != NULL && slave < 256; slave++) {
         const Quantile *q = &b->responses[slave];
-        if (q->low <= q->high && list_put(responses, Py_BuildValue("(iddK)", slave, q->low, q->high, b->close[slave])) < 0)
-            Py_CLEAR(responses); /* (low > high: no response time) */
+        if (q->low <= q->high &&
+            list_put(responses, Py_BuildValue("(iddKd)", slave, q->low, q->high, b->close[slave], b->waits[slave])) < 0)
+            Py_CLEAR(responses); /* (low > high: no response time; waits: _bus.h) */
     }
     /* (Py_BuildValue releases its N arguments when one of them is NULL) */
     PyObject *last_end = b->has_last_end ? PyFloat_FromDouble(b->last_end) : Py_NewRef(Py_None);
