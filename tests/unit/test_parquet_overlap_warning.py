@@ -27,7 +27,7 @@ def test_parquet_warns_as_the_decode(tmp_path: Path) -> None:
     said = run_cli(["-q", "--stats", path])[2]
     assert said == ("vw3-decode: warning: 19200 baud (assumed: --baud sets it): 1 frame would overlap the one before "
                     "at 19200 baud: the line is faster?\n")
-    assert run_cli(["--parquet", str(tmp_path / "data"), path]) == (0, f"{path}: 2 frames, 1 registers, 0 events\n",
+    assert run_cli(["--parquet", str(tmp_path / "data"), path]) == (0, f"{path}: 2 frames, 1 register, 0 events\n",
                                                                      said)
     # named with several captures, as their record warnings are
     other = _pcap(tmp_path / "other.pcap")

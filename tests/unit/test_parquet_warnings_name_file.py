@@ -29,7 +29,7 @@ def test_each_file_named_in_its_record_warnings(tmp_path: Path, jobs: str) -> No
     status, out, err = run_cli(["--parquet", str(tmp_path / "data"), "--jobs", jobs, good, cut])
     assert status == 0
     assert sorted(out.splitlines()) == [f"{cut}: 0 frames, 0 registers, 0 events",
-                                        f"{good}: 1 frames, 0 registers, 0 events"]
+                                        f"{good}: 1 frame, 0 registers, 0 events"]
     assert err == f"vw3-decode: warning: {cut}: record 1: the capture ends inside its header (6 of 16 bytes)\n"
     # as the decode of the same files says it
     assert run_cli(["-q", "--stats", good, cut])[2].splitlines()[0] == err.rstrip("\n")
