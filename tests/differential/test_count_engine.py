@@ -52,7 +52,7 @@ def test_stats_text_of_ten_frames(engine: str) -> None:
     assert "inter-frame gaps: 9, 0 below t3.5; min 3.245 median 7.120 p95 254.480 max 254.481 ms" in lines
     assert "  2-5 ms: 2, 5-10 ms: 5, 200-500 ms: 2" in lines
     assert "master turnaround (answer end to next request, ms): median 131.575 p95 254.480 max 254.481 (4)" in lines
-    assert "    1          5       10.8    13.0    13.0                 987.0                0" in lines
+    assert "    1          5       10.8    13.0    13.0                 991.6                0" in lines
 
 
 OPTIONS = [["--stats"], ["--stats", "--json"], ["--profile", "auto", "--stats"], ["-t", "d", "--stats"],
