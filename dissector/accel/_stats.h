@@ -283,9 +283,6 @@ static void poll_fail(Stats *st, const PollKey *key) {
     if (p != NULL) p->failed++;
 }
 
-#define MEI_FUNCTION 43 /* Encapsulated Interface Transport (pollcycle._MEI: the table's describer "mei") */
-#define MEI_DEVICE_ID 14 /* Read Device Identification: its read code and object id follow (pollcycle.DEVICE_ID) */
-
 /* pollcycle.request_key of a request the engine shows: its window and the window it writes (FC23) as lift_frame
  * read them by the protocol table's request layout; FC8 by its sub-function, the data's first word; FC43 by its
  * MEI type, and 14's by its read code and object id (a basic and an extended identification: two polls). */

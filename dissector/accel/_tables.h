@@ -180,6 +180,8 @@ static const LengthRule known_rule[KNOWN][3] = {
 #define MIN_ADU 4
 #define MAX_ADU 256
 #define MAX_COUNTED 268
+#define MEI_FUNCTION 43
+#define MEI_DEVICE_ID 14
 #define MAX_SLAVE 247
 #define GLITCH_SKIP 16
 #define MAX_VALUES 6

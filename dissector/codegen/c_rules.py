@@ -283,6 +283,12 @@ def _field_names(cls: type, prefix: str, count: str, names: str) -> list[str]:
     ]
 
 
+def _mei_function() -> int:
+    """The one function code the table describes as an MEI transport (FC43: --stats keys its polls by MEI type)."""
+    (code,) = (entry.code for entry in table.FUNCTIONS if entry.text == "mei")
+    return code
+
+
 def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
     """The header lines for the rules, the forms and the constants the engine shares with describe.py."""
     lines = [
@@ -290,6 +296,8 @@ def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
         f"#define MIN_ADU {framing_rules.MIN_ADU}",
         f"#define MAX_ADU {framing_rules.MAX_ADU}",
         f"#define MAX_COUNTED {framing_rules.MAX_COUNTED}",
+        f"#define MEI_FUNCTION {_mei_function()}",
+        f"#define MEI_DEVICE_ID {table.DEVICE_ID}",
         f"#define MAX_SLAVE {framing_rules.MAX_SLAVE}",
         f"#define GLITCH_SKIP {framing_rules.GLITCH_SKIP}",
         f"#define MAX_VALUES {describe.MAX_VALUES}",

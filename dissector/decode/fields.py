@@ -12,6 +12,7 @@ Warnings come in the order the table's comment gives: checks, span, byte count, 
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Any
 from dataclasses import dataclass
 
 from construct import Container
@@ -415,14 +416,13 @@ def _report_server_id_response(frame: Frame, fields: Container) -> None:
             frame.warnings.append(text("server_id_read_longer", count=end, value=int(indicator)))
 
 
-_DEVICE_ID = 14  # FC43's MEI type Read Device Identification (protocol/table.py)
 _DEVICE_ID_CODES = _limits("device_id_code")
 _MANDATORY_OBJECTS = ", ".join(SPEC.device_id_objects[id] for id in range(_limits("device_id_mandatory")[0],
                                                                            _limits("device_id_mandatory")[1] + 1))
 
 
 def _mei_request(frame: Frame, fields: Container) -> None:
-    if fields["mei_type"] != _DEVICE_ID:
+    if fields["mei_type"] != table.DEVICE_ID:
         return
     code = fields["body"]["read_code"]
     low, high = _DEVICE_ID_CODES
@@ -431,7 +431,7 @@ def _mei_request(frame: Frame, fields: Container) -> None:
 
 
 def _mei_response(frame: Frame, fields: Container) -> None:
-    if fields["mei_type"] != _DEVICE_ID:
+    if fields["mei_type"] != table.DEVICE_ID:
         return
     frame.objects = [
         DeviceObject(

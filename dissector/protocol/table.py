@@ -158,7 +158,7 @@ _EIGHT = Fixed(8)
 _BYTE_COUNT = Counted(2, 5)  # slave, function, byte count, data, CRC
 # FC8: Return Query Data (sub-function 0) echoes any amount of data; all others carry one word.
 _DIAGNOSTICS = Select(2, 2, 0, Scan(6), _EIGHT)
-_DEVICE_ID = 14  # FC43's MEI type Read Device Identification: a fixed request, an object list answer
+DEVICE_ID = 14  # FC43's MEI type Read Device Identification: a fixed request, an object list answer
 
 
 def _read(code: int, bits: bool) -> Function:
@@ -275,8 +275,8 @@ FUNCTIONS: tuple[Function, ...] = (
     ),
     Function(
         43,
-        _layout("mei_request", Select(2, 1, _DEVICE_ID, Fixed(7), Scan(5)), "mei_request"),
-        _layout("mei_response", Select(2, 1, _DEVICE_ID, Special("mei_objects", 7, 8), Scan(5)), "mei_response"),
+        _layout("mei_request", Select(2, 1, DEVICE_ID, Fixed(7), Scan(5)), "mei_request"),
+        _layout("mei_response", Select(2, 1, DEVICE_ID, Special("mei_objects", 7, 8), Scan(5)), "mei_response"),
         Access.DIAGNOSTIC,
         compiled=Compiled(texts=True), text="mei",
     ),

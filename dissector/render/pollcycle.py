@@ -32,13 +32,12 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from dissector.model import Frame
-from dissector.protocol.table import FUNCTIONS, write_windows
+from dissector.protocol.table import DEVICE_ID, FUNCTIONS, write_windows
 from dissector.render.describe import device_id_request_text, mei_name, plain_span, subfunction_text
 from dissector.render.stats_store import MAX_KEYS, TALLY_INTERVALS, Coarse
 
 _WRITE_WINDOWS = write_windows()  # requests that write a window of their own (FC23): part of the key
 _MEI = frozenset(entry.code for entry in FUNCTIONS if entry.text == "mei")  # (FC43: keyed by what it reads)
-DEVICE_ID = 14  # the MEI type whose read code and object id say what is read (Application Protocol 6.21)
 
 MIN_REPEATS = 3  # fewer occurrences are not a cycle
 STEP = 1e-4  # interval histogram resolution: 100 us (a few thousand entries at most)

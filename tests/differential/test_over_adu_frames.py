@@ -21,6 +21,7 @@ from dissector.model import Chunk, Frame
 from dissector.protocol.crc import lrc
 from helpers import rtu
 from test_timed_summary import CHAR_NS, assert_same, write_pcap
+from test_next_poll_cut import _lines
 
 T0 = 1_700_000_000 * 10**9
 POLL, ANSWER = rtu("01 03 0000 0002"), rtu("01 03 04 0001 0002")
@@ -41,15 +42,6 @@ FC16_LINE = ("1 request   Write Multiple Registers 0..124 (125): 0=0 1=1 2=2 3=3
 READ_LINE = "1 request   Read Holding Registers 0..125 (126) [warning: quantity 126 outside the spec's 1..125]  CRC ok"
 ANSWER_LINE = ("1 response  Read Holding Registers 0..125 (126): 0=0 1=1 2=2 3=3 4=4 5=5 … (+120) [#{}] "
                + OVER.format(257) + "  CRC ok")
-
-
-def _lines(capture: Path, monkeypatch: pytest.MonkeyPatch) -> tuple[list[str], list[str]]:
-    """The summary and -V lines, the engine's equal to the Python stages' (--json, -x too)."""
-    out, _ = assert_same([str(capture)], monkeypatch)
-    verbose, _ = assert_same([str(capture), "-V"], monkeypatch)
-    for option in ("--json", "-x"):
-        assert_same([str(capture), option], monkeypatch)
-    return out.splitlines(), verbose.splitlines()
 
 
 def test_long_frames_in_a_raw_stream(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
