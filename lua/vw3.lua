@@ -3417,6 +3417,51 @@ local DATA = {
     ["fit_reads"] = 2,
     ["product_code_object"] = 1,
   },
+  ["map_conflicts"] = {
+    { "order_one_word", "one_word", "swapped" },
+    { "wide_labels", "wide", "labels" },
+    { "wide_last", "wide", "last" },
+    { "signed_enum", "signed", "enum" },
+    { "enum_bits", "enum", "bits" },
+    {
+      "labels_quantity",
+      "enum",
+      "scale",
+      {
+        ["what"] = "enum",
+        ["column"] = "scale",
+      },
+    },
+    {
+      "labels_quantity",
+      "enum",
+      "unit",
+      {
+        ["what"] = "enum",
+        ["column"] = "unit",
+      },
+    },
+    {
+      "labels_quantity",
+      "bits",
+      "scale",
+      {
+        ["what"] = "bit",
+        ["column"] = "scale",
+      },
+    },
+    {
+      "labels_quantity",
+      "bits",
+      "unit",
+      {
+        ["what"] = "bit",
+        ["column"] = "unit",
+      },
+    },
+    { "scale_unknown_wide", "scale_unknown", "wide" },
+    { "scale_unknown_unit", "scale_unknown", "no_unit" },
+  },
 }
 do
 -- BEGIN RULES: python3 -m dissector.codegen (codegen/rules_lua.py, data/modbus.toml)
@@ -7568,28 +7613,21 @@ local function map_row(values)
   end
   row.signed = (signed == "1" or FORMAT.signed_types[kind]) or nil
   local order = choice(values, "order", string.upper, FORMAT.order_list[1], FORMAT.orders)
-  if words == 1 and order ~= FORMAT.order_list[1] then
-    wrong("order_one_word", { text = order, kind = kind })
-  end
-  if words == 2 then
-    -- a 32-bit value over this register and the next (naming.name_wide reads it on the first)
-    if row.enum or row.bits then wrong("wide_labels", { kind = kind }) end
-    if address == 0xFFFF then wrong("wide_last", { kind = kind, address = address }) end
-    row.words, row.kind, row.swapped = 2, kind, order == "CDAB" or nil
-  end
-  if row.signed and row.enum then wrong("signed_enum") end
-  if row.enum and row.bits then wrong("enum_bits") end
-  for _, labels in ipairs({ { "enum", row.enum }, { "bit", row.bits } }) do
-    for _, column in ipairs({ { "scale", scale_text ~= "" }, { "unit", row.unit ~= nil } }) do
-      if labels[2] and column[2] then wrong("labels_quantity", { what = labels[1], column = column[1] }) end
+  -- (cells that contradict each other: maps.CONFLICTS, judged on maps._row's facts)
+  local facts = { one_word = words == 1, wide = words == 2, swapped = order ~= FORMAT.order_list[1],
+    last = address == 0xFFFF, signed = row.signed, enum = row.enum, bits = row.bits, labels = row.enum or row.bits,
+    scale = scale_text ~= "", unit = row.unit ~= nil, no_unit = row.unit == nil,
+    scale_unknown = scale_text == FORMAT.scale_unknown }
+  for _, conflict in ipairs(DATA.map_conflicts) do
+    if facts[conflict[2]] and facts[conflict[3]] then
+      wrong(conflict[1], conflict[4] or { text = order, kind = kind, address = address })
     end
   end
-  if scale_text == FORMAT.scale_unknown then
-    -- (a scale the device's settings choose: the raw word, naming the unit it counts in)
-    if words == 2 then wrong("scale_unknown_wide", { kind = kind }) end
-    if row.unit == nil then wrong("scale_unknown_unit") end
-    row.scale_unknown = true
+  if words == 2 then -- (a 32-bit value over this register and the next: naming.name_wide reads it on the first)
+    row.words, row.kind, row.swapped = 2, kind, order == "CDAB" or nil
   end
+  -- (a scale the device's settings choose: the raw word, naming the unit it counts in)
+  row.scale_unknown = facts.scale_unknown or nil
   row.ambiguous_8000 = (row.signed or (row.bits and row.bits[15]) or (row.enum and row.enum[0x8000]) or words == 2)
     and true or nil
   return address, row
@@ -7798,8 +7836,9 @@ local function address_name(row, address, label)
 end
 
 -- Neighbouring addresses told as ranges (devices/story.py, explain.py): entries (.address, .row, .label)
--- in runs, an entry joining the run before it where joins(last of the run, entry) holds.
-local function address_runs(entries, joins)
+-- in runs, an entry joining the run before it where joins(last of the run, entry) holds, each run told as
+-- alone(its entry) or, of several, many(run); the texts joined by `, `.
+local function runs_told(entries, joins, alone, many)
   local runs, run = {}, nil
   for _, entry in ipairs(entries) do
     if run ~= nil and joins(run[#run], entry) then
@@ -7809,7 +7848,8 @@ local function address_runs(entries, joins)
       runs[#runs + 1] = run
     end
   end
-  return runs
+  for index, each in ipairs(runs) do runs[index] = #each == 1 and alone(each[1]) or many(each) end
+  return concat(runs, ", ")
 end
 
 local function consecutive(a, b) return b.address == a.address + 1 end
@@ -8120,10 +8160,10 @@ local function interpret_wide(row, first, second)
   return value, text
 end
 M.INPUT_FUNCTIONS, M.PLC_LABELS, M.address_name = INPUT_FUNCTIONS, PLC_LABELS, address_name
-M.address_runs, M.build_device, M.check_references = address_runs, build_device, check_references
-M.consecutive, M.copied, M.device_for, M.device_of = consecutive, copied, device_for, device_of
-M.has_note, M.interpret, M.interpret_wide, M.layered_rows = has_note, interpret, interpret_wide, layered_rows
-M.rows_before, M.rows_for, M.span_name = rows_before, rows_for, span_name
+M.build_device, M.check_references, M.consecutive, M.copied = build_device, check_references, consecutive, copied
+M.device_for, M.device_of, M.has_note, M.interpret = device_for, device_of, has_note, interpret
+M.interpret_wide, M.layered_rows, M.rows_before, M.rows_for = interpret_wide, layered_rows, rows_before, rows_for
+M.runs_told, M.span_name = runs_told, span_name
 end
 
 -- ---- vw3.story: lua/src/story.lua ----
@@ -8133,10 +8173,10 @@ package.preload["vw3.story"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.story"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local PLC_LABELS, address_name, address_runs, concat = PLC_LABELS, address_name, address_runs, concat
-local consecutive, has_note, interpret, interpret_wide = consecutive, has_note, interpret, interpret_wide
-local ipairs, math, next, note, register_at, rows_before = ipairs, math, next, note, register_at, rows_before
-local rows_for, say, span_name, table = rows_for, say, span_name, table
+local PLC_LABELS, address_name, consecutive, has_note = PLC_LABELS, address_name, consecutive, has_note
+local interpret, interpret_wide, ipairs, math, next, note = interpret, interpret_wide, ipairs, math, next, note
+local register_at, rows_before, rows_for, runs_told, say = register_at, rows_before, rows_for, runs_told, say
+local span_name, table = span_name, table
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
@@ -8162,12 +8202,9 @@ function story.tell(f)
       note(f, say("event_one", first))
     else
       table.sort(group, function(a, b) return a.address < b.address end)
-      local parts = {}
-      for index, run in ipairs(address_runs(group, consecutive)) do
-        parts[index] = #run == 1 and event_name(run[1]) or span_name(run)
-      end
-      note(f, say(first.now_shared and "event_runs_now" or "event_runs", { runs = concat(parts, ", "),
-        what = first.what, count = #group, how = first.how, frame = first.frame, now = first.now_shared }))
+      note(f, say(first.now_shared and "event_runs_now" or "event_runs", { what = first.what, count = #group,
+        runs = runs_told(group, consecutive, event_name, span_name), how = first.how, frame = first.frame,
+        now = first.now_shared }))
     end
   end
 end
@@ -8303,8 +8340,7 @@ end
 -- The display addresses of a frame's registers on a PLC-style device (`40101`), false on any other:
 -- describe's `labels`, which a caller naming many registers of one frame finds once (register_view).
 local function frame_labels(device, f)
-  local base = plc_base(device, f)
-  return base and PLC_LABELS[base] or false
+  return device.plc ~= nil and PLC_LABELS[plc_base(device, f)]
 end
 
 -- A register of f as the display shows it (reg: its address and value; naming.name_register, name_wide):
@@ -8352,12 +8388,12 @@ local function annotate_registers(f, device, run, b, read)
   end
   -- Nothing to follow: no 16#8000 story, no layout that depends on another register.
   if protected == nil and next(device.depend) == nil then return end
-  local base = plc_base(device, f)
+  local labels = frame_labels(device, f)
   local rows = rows_for(device, f.fn)
   for index = 0, count - 1 do
     local k = first + 2 * index
     local address = (start + index) % 0x10000
-    local label = base and PLC_LABELS[base][address]
+    local label = labels and labels[address]
     local plain, status = annotate_one(f, device, address, b[k] * 256 + b[k + 1], protected, multi, label,
       words_at(rows, address, index, count))
     if plain then
@@ -8383,12 +8419,12 @@ package.preload["vw3.explain"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.explain"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, LIFT_OF, NOT_BROADCAST, PLAIN_READS, PLC_LABELS = DATA, LIFT_OF, NOT_BROADCAST, PLAIN_READS, PLC_LABELS
-local READS, READ_LIMIT, REQUEST, RESPONSE, address_name = READS, READ_LIMIT, REQUEST, RESPONSE, address_name
-local address_runs, concat, consecutive, format = address_runs, concat, consecutive, format
-local function_name, ipairs, lane, math, next, note = function_name, ipairs, lane, math, next, note
-local plc_base, rows_for, say, span_name, story, tonumber = plc_base, rows_for, say, span_name, story, tonumber
-local track, trusted_request, u16, verified, warn = track, trusted_request, u16, verified, warn
+local DATA, LIFT_OF, NOT_BROADCAST, PLAIN_READS, READS = DATA, LIFT_OF, NOT_BROADCAST, PLAIN_READS, READS
+local READ_LIMIT, REQUEST, RESPONSE, address_name, concat = READ_LIMIT, REQUEST, RESPONSE, address_name, concat
+local consecutive, format, frame_labels, function_name = consecutive, format, frame_labels, function_name
+local ipairs, lane, math, next, note, rows_for, runs_told = ipairs, lane, math, next, note, rows_for, runs_told
+local say, span_name, story, tonumber, track = say, span_name, story, tonumber, track
+local trusted_request, u16, verified, warn = trusted_request, u16, verified, warn
 
 -- Each quantity request f's lifting rule checks (FC23: read and write, as the spec's checks name them; without
 -- its fields, as vw3_modbus.lua remembers a request, its quantity) with the device's limit for it (nil: none):
@@ -8449,11 +8485,11 @@ local function written_read_only(f, device)
   elseif MASK_WRITTEN[code] and f.start ~= nil then
     addresses[1] = f.start
   end
-  local base = plc_base(device, f) -- (a PLC-style device's reference, as the frame shows it: `SPD (40101)`)
+  local labels = frame_labels(device, f) -- (a PLC-style device's reference, as the frame shows it: `SPD (40101)`)
   for _, address in ipairs(addresses) do
     local row = rows[address]
     if row ~= nil and row.read_only then
-      named[#named + 1] = address_name(row, address, base and PLC_LABELS[base][address])
+      named[#named + 1] = address_name(row, address, labels and labels[address])
     end
   end
   return named
@@ -8515,12 +8551,12 @@ end
 -- The registers of a read every parameter of which an exception 02 says non-existent or protected
 -- (explain._all_unreadable): each address with its row, label and that status, no value.
 local function refused_registers(device, request)
-  local base, out = plc_base(device, request), {}
+  local labels, out = frame_labels(device, request), {}
   for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
     local address = (request.start + index) % 0x10000
     local row = rows_for(device, request.fn)[address]
     out[index + 1] = { address = address, row = row, status = row == nil and "non-existent" or "protected",
-      label = base and PLC_LABELS[base][address] }
+      label = labels and labels[address] or nil }
   end
   return out
 end
@@ -8531,17 +8567,11 @@ local function both_unmapped(a, b) return a.row == nil and b.row == nil and cons
 local function all_unreadable(f, device)
   -- One note: the device meaning with the parameters of the read (neighbouring unmapped addresses as
   -- a range), then each parameter's story (devices/explain.py).
-  local entries, parts = refused_registers(device, f.request), {}
-  for index, run in ipairs(address_runs(entries, both_unmapped)) do
-    local first = run[1]
-    if #run == 1 then
-      parts[index] = address_name(first.row, first.address, first.label) .. " " .. first.status
-    else
-      parts[index] = say("unmapped_run", { span = span_name(run), count = #run })
-    end
-  end
-  note(f, say("all_unreadable", { code = f.exception_code, device = device.profile.device,
-    parameters = concat(parts, ", ") }))
+  local entries = refused_registers(device, f.request)
+  local parameters = runs_told(entries, both_unmapped, function(entry)
+    return address_name(entry.row, entry.address, entry.label) .. " " .. entry.status
+  end, function(run) return say("unmapped_run", { span = span_name(run), count = #run }) end)
+  note(f, say("all_unreadable", { code = f.exception_code, device = device.profile.device, parameters = parameters }))
   local now = say("unreadable_now", { code = f.exception_code })
   for _, entry in ipairs(entries) do
     track(device.seen, f, entry.address, entry.row, 0, entry.status, now, entry.label)
@@ -8633,7 +8663,7 @@ end
 local function span_label(f, device)
   -- `40501..40504` for a PLC-style device, so requests without registers show 4X numbers too; FC23's request
   -- its written window too (annotator._span_label: `write 40006 (0)` where it writes none).
-  local labels = PLC_LABELS[plc_base(device, f)]
+  local labels = frame_labels(device, f)
   f.span_label = window_label(labels, f.start, f.quantity)
   local rule, fields = LIFT_OF[REQUEST][f.fn], f.fields
   if f.kind == REQUEST and rule ~= nil and rule.write_window ~= nil and fields ~= nil then
@@ -8892,6 +8922,15 @@ local function hold(st, f, b)
   held[#held + 1] = copy
 end
 
+-- A slave's device from item `number` on and why (`auto`'s reason; nil: none), kept in the slave's history
+-- (device_of: the earlier frames keep theirs).
+local function keep_device(st, slave, number, device, reason)
+  local before = st.devices[slave]
+  local history = st.history[slave] or { before and { number = 0, device = before } or nil }
+  history[#history + 1] = { number = number, device = device, reason = reason }
+  st.history[slave], st.devices[slave] = history, device
+end
+
 -- The device for f under profile `auto`: a new one when this frame decides a slave's profile (kept in
 -- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice), which
 -- then annotates the copies of the slave's provisional frames again (hold; lane.annotate_again).
@@ -8920,17 +8959,11 @@ local function select_device(st, f, b)
   end
   -- (said on the later passes, where every frame bears the slave's last reason: the frame it comes from says so)
   st.said[f.number] = { choice.profile, choice.reason }
-  local history = st.history[slave]
-  local device = st.devices[slave]
   -- (choice.same: kept, and said with its new reason from here on, nothing announced, as vw3-decode)
+  local device = not choice.same and build_device(PROFILES[choice.profile], slave) or st.devices[slave]
+  keep_device(st, slave, f.number, device, choice.reason)
   if not choice.same then
     st.chosen[slave] = choice.profile
-    if history == nil then
-      history = { device and { number = 0, device = device } or nil }
-      st.history[slave] = history
-    end
-    device = build_device(PROFILES[choice.profile], slave)
-    st.devices[slave] = device
     f.profile_choice = choice.reason
     local held = st.held and st.held[slave]
     if held ~= nil then
@@ -8941,7 +8974,6 @@ local function select_device(st, f, b)
       hold(st, f, b)
     end
   end
-  history[#history + 1] = { number = f.number, device = device, reason = choice.reason }
   return device
 end
 
@@ -8988,14 +9020,9 @@ local function broadcast_device(st, f)
   name = name or fallback
   -- (slave 0's device under each profile, built once)
   st.broadcasting = st.broadcasting or made_once(function(named) return build_device(PROFILES[named], 0) end)
-  local device, before = st.broadcasting[name], st.devices[0]
-  local history = st.history[0]
+  local device, history = st.broadcasting[name], st.history[0]
   local last = history and history[#history]
-  if before ~= device or (last and last.reason) ~= said then -- (device_of: the earlier frames keep theirs)
-    history = history or { before and { number = 0, device = before } or nil }
-    history[#history + 1] = { number = f.number, device = device, reason = said }
-    st.history[0], st.devices[0] = history, device
-  end
+  if st.devices[0] ~= device or (last and last.reason) ~= said then keep_device(st, 0, f.number, device, said) end
   return device
 end
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from dissector.devices import access
+from dissector.devices import access, maps
 
 def profile_data() -> dict[str, Any]:
     """Built-in device profiles with their register maps, as the Python annotator loads them."""
@@ -42,6 +42,8 @@ def profile_data() -> dict[str, Any]:
             "fit_reads": selection.FIT_READS,
             "product_code_object": selection.PRODUCT_CODE,
         },
+        # A map row's cells that contradict each other, in the order judged (maps.CONFLICTS: lua/src/maps.lua).
+        "map_conflicts": [list(conflict) for conflict in maps.CONFLICTS],
     }
 
 

@@ -136,6 +136,21 @@ MESSAGES = {
     "references_column": f" or a {REFERENCE} column",
 }
 
+# Cells of a row that contradict each other, refused rather than one of them silently ignored, in the order
+# they are judged: (MESSAGES key, fact, fact[, the message's own parameters]), refused where both facts hold
+# (_row's facts; the plugin's map_row reads this table: codegen/profiles_lua.py).
+CONFLICTS = (
+    ("order_one_word", "one_word", "swapped"),
+    ("wide_labels", "wide", "labels"),
+    ("wide_last", "wide", "last"),
+    ("signed_enum", "signed", "enum"),
+    ("enum_bits", "enum", "bits"),
+    *(("labels_quantity", labels, column, {"what": what, "column": column})
+      for labels, what in (("enum", "enum"), ("bits", "bit")) for column in ("scale", "unit")),
+    ("scale_unknown_wide", "scale_unknown", "wide"),
+    ("scale_unknown_unit", "scale_unknown", "no_unit"),
+)
+
 
 def _say(key: str, /, **values: object) -> str:
     return MESSAGES[key].format(**values)
@@ -304,25 +319,14 @@ def _row(values: dict[str, str]) -> RegisterDef:
     order = values.get("order", "").strip(_SPACE).translate(_UPPER) or ORDERS[0]
     if order not in ORDERS:
         raise ValueError(_say("order", text=order))
-    if words == 1 and order != ORDERS[0]:
-        raise ValueError(_say("order_one_word", text=order, kind=kind))
-    if words == 2 and (enum or bits):
-        raise ValueError(_say("wide_labels", kind=kind))
-    if words == 2 and address == 0xFFFF:
-        raise ValueError(_say("wide_last", kind=kind, address=address))
-    if signed and enum:
-        raise ValueError(_say("signed_enum"))
-    if enum and bits:
-        raise ValueError(_say("enum_bits"))
     unit = printable(values.get("unit", "").strip(_SPACE)) or None
-    for what, labels in (("enum", enum), ("bit", bits)):
-        for column, given in (("scale", raw_scale), ("unit", unit)):
-            if labels and given:
-                raise ValueError(_say("labels_quantity", what=what, column=column))
-    if raw_scale == SCALE_UNKNOWN and words == 2:
-        raise ValueError(_say("scale_unknown_wide", kind=kind))
-    if raw_scale == SCALE_UNKNOWN and unit is None:
-        raise ValueError(_say("scale_unknown_unit"))
+    facts = {"one_word": words == 1, "wide": words == 2, "swapped": order != ORDERS[0], "last": address == 0xFFFF,
+             "signed": signed, "enum": bool(enum), "bits": bool(bits), "labels": bool(enum or bits),
+             "scale": bool(raw_scale), "unit": unit is not None, "no_unit": unit is None,
+             "scale_unknown": raw_scale == SCALE_UNKNOWN}
+    for message, first, second, *given in CONFLICTS:
+        if facts[first] and facts[second]:
+            raise ValueError(_say(message, text=order, kind=kind, address=address, **(given[0] if given else {})))
     return RegisterDef(
         address=address,
         code=code,

@@ -23,8 +23,9 @@ local function address_name(row, address, label)
 end
 
 -- Neighbouring addresses told as ranges (devices/story.py, explain.py): entries (.address, .row, .label)
--- in runs, an entry joining the run before it where joins(last of the run, entry) holds.
-local function address_runs(entries, joins)
+-- in runs, an entry joining the run before it where joins(last of the run, entry) holds, each run told as
+-- alone(its entry) or, of several, many(run); the texts joined by `, `.
+local function runs_told(entries, joins, alone, many)
   local runs, run = {}, nil
   for _, entry in ipairs(entries) do
     if run ~= nil and joins(run[#run], entry) then
@@ -34,7 +35,8 @@ local function address_runs(entries, joins)
       runs[#runs + 1] = run
     end
   end
-  return runs
+  for index, each in ipairs(runs) do runs[index] = #each == 1 and alone(each[1]) or many(each) end
+  return concat(runs, ", ")
 end
 
 local function consecutive(a, b) return b.address == a.address + 1 end

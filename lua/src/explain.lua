@@ -61,11 +61,11 @@ local function written_read_only(f, device)
   elseif MASK_WRITTEN[code] and f.start ~= nil then
     addresses[1] = f.start
   end
-  local base = plc_base(device, f) -- (a PLC-style device's reference, as the frame shows it: `SPD (40101)`)
+  local labels = frame_labels(device, f) -- (a PLC-style device's reference, as the frame shows it: `SPD (40101)`)
   for _, address in ipairs(addresses) do
     local row = rows[address]
     if row ~= nil and row.read_only then
-      named[#named + 1] = address_name(row, address, base and PLC_LABELS[base][address])
+      named[#named + 1] = address_name(row, address, labels and labels[address])
     end
   end
   return named
@@ -127,12 +127,12 @@ end
 -- The registers of a read every parameter of which an exception 02 says non-existent or protected
 -- (explain._all_unreadable): each address with its row, label and that status, no value.
 local function refused_registers(device, request)
-  local base, out = plc_base(device, request), {}
+  local labels, out = frame_labels(device, request), {}
   for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
     local address = (request.start + index) % 0x10000
     local row = rows_for(device, request.fn)[address]
     out[index + 1] = { address = address, row = row, status = row == nil and "non-existent" or "protected",
-      label = base and PLC_LABELS[base][address] }
+      label = labels and labels[address] or nil }
   end
   return out
 end
@@ -143,17 +143,11 @@ local function both_unmapped(a, b) return a.row == nil and b.row == nil and cons
 local function all_unreadable(f, device)
   -- One note: the device meaning with the parameters of the read (neighbouring unmapped addresses as
   -- a range), then each parameter's story (devices/explain.py).
-  local entries, parts = refused_registers(device, f.request), {}
-  for index, run in ipairs(address_runs(entries, both_unmapped)) do
-    local first = run[1]
-    if #run == 1 then
-      parts[index] = address_name(first.row, first.address, first.label) .. " " .. first.status
-    else
-      parts[index] = say("unmapped_run", { span = span_name(run), count = #run })
-    end
-  end
-  note(f, say("all_unreadable", { code = f.exception_code, device = device.profile.device,
-    parameters = concat(parts, ", ") }))
+  local entries = refused_registers(device, f.request)
+  local parameters = runs_told(entries, both_unmapped, function(entry)
+    return address_name(entry.row, entry.address, entry.label) .. " " .. entry.status
+  end, function(run) return say("unmapped_run", { span = span_name(run), count = #run }) end)
+  note(f, say("all_unreadable", { code = f.exception_code, device = device.profile.device, parameters = parameters }))
   local now = say("unreadable_now", { code = f.exception_code })
   for _, entry in ipairs(entries) do
     track(device.seen, f, entry.address, entry.row, 0, entry.status, now, entry.label)
@@ -245,7 +239,7 @@ end
 local function span_label(f, device)
   -- `40501..40504` for a PLC-style device, so requests without registers show 4X numbers too; FC23's request
   -- its written window too (annotator._span_label: `write 40006 (0)` where it writes none).
-  local labels = PLC_LABELS[plc_base(device, f)]
+  local labels = frame_labels(device, f)
   f.span_label = window_label(labels, f.start, f.quantity)
   local rule, fields = LIFT_OF[REQUEST][f.fn], f.fields
   if f.kind == REQUEST and rule ~= nil and rule.write_window ~= nil and fields ~= nil then

@@ -249,28 +249,21 @@ local function map_row(values)
   end
   row.signed = (signed == "1" or FORMAT.signed_types[kind]) or nil
   local order = choice(values, "order", string.upper, FORMAT.order_list[1], FORMAT.orders)
-  if words == 1 and order ~= FORMAT.order_list[1] then
-    wrong("order_one_word", { text = order, kind = kind })
-  end
-  if words == 2 then
-    -- a 32-bit value over this register and the next (naming.name_wide reads it on the first)
-    if row.enum or row.bits then wrong("wide_labels", { kind = kind }) end
-    if address == 0xFFFF then wrong("wide_last", { kind = kind, address = address }) end
-    row.words, row.kind, row.swapped = 2, kind, order == "CDAB" or nil
-  end
-  if row.signed and row.enum then wrong("signed_enum") end
-  if row.enum and row.bits then wrong("enum_bits") end
-  for _, labels in ipairs({ { "enum", row.enum }, { "bit", row.bits } }) do
-    for _, column in ipairs({ { "scale", scale_text ~= "" }, { "unit", row.unit ~= nil } }) do
-      if labels[2] and column[2] then wrong("labels_quantity", { what = labels[1], column = column[1] }) end
+  -- (cells that contradict each other: maps.CONFLICTS, judged on maps._row's facts)
+  local facts = { one_word = words == 1, wide = words == 2, swapped = order ~= FORMAT.order_list[1],
+    last = address == 0xFFFF, signed = row.signed, enum = row.enum, bits = row.bits, labels = row.enum or row.bits,
+    scale = scale_text ~= "", unit = row.unit ~= nil, no_unit = row.unit == nil,
+    scale_unknown = scale_text == FORMAT.scale_unknown }
+  for _, conflict in ipairs(DATA.map_conflicts) do
+    if facts[conflict[2]] and facts[conflict[3]] then
+      wrong(conflict[1], conflict[4] or { text = order, kind = kind, address = address })
     end
   end
-  if scale_text == FORMAT.scale_unknown then
-    -- (a scale the device's settings choose: the raw word, naming the unit it counts in)
-    if words == 2 then wrong("scale_unknown_wide", { kind = kind }) end
-    if row.unit == nil then wrong("scale_unknown_unit") end
-    row.scale_unknown = true
+  if words == 2 then -- (a 32-bit value over this register and the next: naming.name_wide reads it on the first)
+    row.words, row.kind, row.swapped = 2, kind, order == "CDAB" or nil
   end
+  -- (a scale the device's settings choose: the raw word, naming the unit it counts in)
+  row.scale_unknown = facts.scale_unknown or nil
   row.ambiguous_8000 = (row.signed or (row.bits and row.bits[15]) or (row.enum and row.enum[0x8000]) or words == 2)
     and true or nil
   return address, row

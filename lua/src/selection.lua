@@ -235,6 +235,15 @@ local function hold(st, f, b)
   held[#held + 1] = copy
 end
 
+-- A slave's device from item `number` on and why (`auto`'s reason; nil: none), kept in the slave's history
+-- (device_of: the earlier frames keep theirs).
+local function keep_device(st, slave, number, device, reason)
+  local before = st.devices[slave]
+  local history = st.history[slave] or { before and { number = 0, device = before } or nil }
+  history[#history + 1] = { number = number, device = device, reason = reason }
+  st.history[slave], st.devices[slave] = history, device
+end
+
 -- The device for f under profile `auto`: a new one when this frame decides a slave's profile (kept in
 -- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice), which
 -- then annotates the copies of the slave's provisional frames again (hold; lane.annotate_again).
@@ -263,17 +272,11 @@ local function select_device(st, f, b)
   end
   -- (said on the later passes, where every frame bears the slave's last reason: the frame it comes from says so)
   st.said[f.number] = { choice.profile, choice.reason }
-  local history = st.history[slave]
-  local device = st.devices[slave]
   -- (choice.same: kept, and said with its new reason from here on, nothing announced, as vw3-decode)
+  local device = not choice.same and build_device(PROFILES[choice.profile], slave) or st.devices[slave]
+  keep_device(st, slave, f.number, device, choice.reason)
   if not choice.same then
     st.chosen[slave] = choice.profile
-    if history == nil then
-      history = { device and { number = 0, device = device } or nil }
-      st.history[slave] = history
-    end
-    device = build_device(PROFILES[choice.profile], slave)
-    st.devices[slave] = device
     f.profile_choice = choice.reason
     local held = st.held and st.held[slave]
     if held ~= nil then
@@ -284,7 +287,6 @@ local function select_device(st, f, b)
       hold(st, f, b)
     end
   end
-  history[#history + 1] = { number = f.number, device = device, reason = choice.reason }
   return device
 end
 
@@ -331,14 +333,9 @@ local function broadcast_device(st, f)
   name = name or fallback
   -- (slave 0's device under each profile, built once)
   st.broadcasting = st.broadcasting or made_once(function(named) return build_device(PROFILES[named], 0) end)
-  local device, before = st.broadcasting[name], st.devices[0]
-  local history = st.history[0]
+  local device, history = st.broadcasting[name], st.history[0]
   local last = history and history[#history]
-  if before ~= device or (last and last.reason) ~= said then -- (device_of: the earlier frames keep theirs)
-    history = history or { before and { number = 0, device = before } or nil }
-    history[#history + 1] = { number = f.number, device = device, reason = said }
-    st.history[0], st.devices[0] = history, device
-  end
+  if st.devices[0] ~= device or (last and last.reason) ~= said then keep_device(st, 0, f.number, device, said) end
   return device
 end
 

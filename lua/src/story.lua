@@ -26,12 +26,9 @@ function story.tell(f)
       note(f, say("event_one", first))
     else
       table.sort(group, function(a, b) return a.address < b.address end)
-      local parts = {}
-      for index, run in ipairs(address_runs(group, consecutive)) do
-        parts[index] = #run == 1 and event_name(run[1]) or span_name(run)
-      end
-      note(f, say(first.now_shared and "event_runs_now" or "event_runs", { runs = concat(parts, ", "),
-        what = first.what, count = #group, how = first.how, frame = first.frame, now = first.now_shared }))
+      note(f, say(first.now_shared and "event_runs_now" or "event_runs", { what = first.what, count = #group,
+        runs = runs_told(group, consecutive, event_name, span_name), how = first.how, frame = first.frame,
+        now = first.now_shared }))
     end
   end
 end
@@ -167,8 +164,7 @@ end
 -- The display addresses of a frame's registers on a PLC-style device (`40101`), false on any other:
 -- describe's `labels`, which a caller naming many registers of one frame finds once (register_view).
 local function frame_labels(device, f)
-  local base = plc_base(device, f)
-  return base and PLC_LABELS[base] or false
+  return device.plc ~= nil and PLC_LABELS[plc_base(device, f)]
 end
 
 -- A register of f as the display shows it (reg: its address and value; naming.name_register, name_wide):
@@ -216,12 +212,12 @@ local function annotate_registers(f, device, run, b, read)
   end
   -- Nothing to follow: no 16#8000 story, no layout that depends on another register.
   if protected == nil and next(device.depend) == nil then return end
-  local base = plc_base(device, f)
+  local labels = frame_labels(device, f)
   local rows = rows_for(device, f.fn)
   for index = 0, count - 1 do
     local k = first + 2 * index
     local address = (start + index) % 0x10000
-    local label = base and PLC_LABELS[base][address]
+    local label = labels and labels[address]
     local plain, status = annotate_one(f, device, address, b[k] * 256 + b[k + 1], protected, multi, label,
       words_at(rows, address, index, count))
     if plain then
