@@ -39,7 +39,9 @@ Listen Only Mode (Application Protocol 6.8.1): after an FC8 04 request to it (or
 nothing until an FC8 01 Restart Communications Option request (to it or broadcast), which it acts on but
 does not answer. Such requests are noted as such (texts listen_only, listen_only_ends) and never unanswered;
 an exception to the FC8 04 itself says the slave did not enter the mode; a damaged request (bad CRC or LRC)
-is not acted on. A frame identical to such a request (FC5, FC6, FC8's echo), which the framer reads as its
+is not acted on. The 08/04's sub-function alone after it (intact, too short for a request) is its slave's
+answer, which the spec's slave does not give (pymodbus's server answers so: warned, listen_only_echo); the
+slave is taken to be in the mode all the same, as its answer acknowledges it. A frame identical to such a request (FC5, FC6, FC8's echo), which the framer reads as its
 answer, is the master's repeat of it (the retry rule's _retried when the slave answers that: after 08/01); a
 frame that differs from it is the slave's answer (it did not take the mode), as the framer reads it.
 The state is per slave: the C engine, which does not keep it, hands the transactions of a
@@ -268,6 +270,11 @@ class Pairer:
                 item.kind = Kind.REQUEST
                 self._echoed = None
                 self._retried = item if self._answered(item) else None
+        if item.kind is Kind.REQUEST and pending is not None and self._echoes_listen_only(pending, item):
+            # The slave answers its 08/04 after all, against the spec (pymodbus's server does): no master's
+            # repeat, which holds the data word too. (The framer awaits nothing after either.)
+            item.kind = Kind.RESPONSE
+            item.warnings.append(text("listen_only_echo"))
         if item.kind is Kind.REQUEST:
             if pending is not None and self._no_answer(pending) and self._pending_released:
                 item.notes.append(text("unanswered", number=pending.number))
@@ -370,6 +377,12 @@ class Pairer:
         """Would a server answer this request (not one the spec has none answer, not to a slave in Listen Only
         Mode)?"""
         return awaits_answer(request) and not self.in_listen_only(request.slave)
+
+    def _echoes_listen_only(self, pending: Frame, item: Frame) -> bool:
+        """Is `item` its slave's answer to the open 08/04 that put it in Listen Only Mode: that sub-function
+        alone, intact (too short for a request, so not the master's repeat)?"""
+        return (item.crc_ok and item.slave == pending.slave and item.pdu == pending.pdu[:3] != pending.pdu
+                and self._listening.get(pending.slave) is pending)
 
     def _heard(self, request: Frame, answer: Item) -> None:
         """A slave taken to be in Listen Only Mode answered (not the request again: _repeats): it is not in the

@@ -15,6 +15,17 @@ CHOICES = {
     "mode": ("rtu", "ascii"),
     "status": REGISTER_STATUSES,
 }
+# Texts the plugin's field numbers with value strings, in their order from 1 (vw3.kind: lua/src/pack.lua
+# NUMBER_KIND): a filter takes the number, the name quoted or bare, in any case, as tshark takes a value
+# string (`kind == 2`, `kind == Response`), and orders them by number (`kind > 2`: exception, noise).
+NUMBERED = {"kind": CHOICES["kind"]}
+
+
+def numbered_choices(field: str) -> str:
+    """`request (1), response (2), ...`: a numbered field's values, as an error names them."""
+    return ", ".join(f"{name} ({number})" for number, name in enumerate(NUMBERED[field], 1))
+
+
 # Enumerated texts: the spec's names (every code 0..255 has one) and, from FilterContext.names, the
 # run's profiles' (a profile's own function names, exception meanings, diagnostics).
 SPEC_NAMES = {

@@ -203,7 +203,8 @@ def _label_base(first: str, start: int) -> int | None:
     number = label_number(first)
     if number is None:
         return None
-    for base in (number - start, (number - start + 9) // 10):  # (a 5-digit label, or past its top)
+    # (a label past its top first: 465535 at 65534 is 40001's, as 40001 labels the window's wrapped 0)
+    for base in ((number - start + 9) // 10, number - start):
         if base >= 0 and plc_label(base, start) == first:
             return base
     return None
@@ -241,7 +242,7 @@ def item_elements(item: Item) -> list[dict[str, Any]]:
             if address & 0xFFFF not in known:
                 known.add(address & 0xFFFF)
                 synthesized.append({"address": address & 0xFFFF} if base is None
-                                   else {"address": address & 0xFFFF, "label": plc_label(base, address)})
+                                   else {"address": address & 0xFFFF, "label": plc_label(base, address & 0xFFFF)})
     return elements + synthesized if synthesized else elements
 
 

@@ -88,7 +88,9 @@ from dissector.render.filter_fields import (  # noqa: F401 (re-exported: fields.
     field_listing,
     pdu_key_types, pdu_values, unknown_pdu_key, whole_number,
 )
-from dissector.render.filter_context import CHOICES, SHOWN_CHOICES, SPEC_NAMES, FilterContext  # noqa: F401
+from dissector.render.filter_context import (  # noqa: F401
+    CHOICES, NUMBERED, SHOWN_CHOICES, SPEC_NAMES, FilterContext, numbered_choices,
+)
 from dissector.render.filter_match import (
     And,
     address_of,
@@ -460,6 +462,10 @@ class _Parser:
             op = "!="  # one value (a frame's, or one register's): it is there and differs
         if field == "address":
             return address_test(op, value)
+        if field in NUMBERED and op not in ("==", "!="):  # (ordered by the plugin's numbers, as tshark orders them)
+            self._check_choice(field, value, value_token)
+            rank = {name: number for number, name in enumerate(NUMBERED[field], 1)}
+            return lambda item, reg: match_op(op, rank.get(get(item, reg)), rank[value])
         return lambda item, reg: match_op(op, get(item, reg), value)
 
     def parse_value(self, field: str, ftype: str) -> Any:
@@ -498,11 +504,26 @@ class _Parser:
                 self.advance()
                 return token.value == "true"
             raise self.error(f"{field} takes a number or a text in double quotes, not {self._describe(token)}")
+        if field in NUMBERED:
+            return self._numbered(field, token)
         if token.kind != "string":
             hint = ' (strings go in double quotes: "...")' if token.kind in ("name", "number") else ""
             raise self.error(f"{field} is a text, not {self._describe(token)}{hint}")
         self.advance()
         return token.value
+
+    def _numbered(self, field: str, token: Token) -> str:
+        """A value of a field the plugin numbers (NUMBERED): its name, from the number or the name in any case
+        (a misspelt name is left to _check_choice, which suggests one)."""
+        names = NUMBERED[field]
+        if token.kind == "number" and token.value in range(1, len(names) + 1):
+            self.advance()
+            return names[token.value - 1]
+        if token.kind in ("string", "name"):
+            name = str(token.value).lower()
+            self.advance()
+            return name if name in names else str(token.value)
+        raise self.error(f"{field} {token.text} does not exist: {field} is one of {numbered_choices(field)}")
 
     def parse_number(self, field: str, token: Token) -> int | float:
         """A number for `field`: 1.5 and 13.5e-3 for a decimal one, but as tshark refuses `vw3.item == 1e0`
@@ -572,6 +593,8 @@ class _Parser:
             close = difflib.get_close_matches(str(value).lower(), list(lowered), n=1)
             hint = f" (did you mean {lowered[close[0]]!r}?)" if close else ""
             listed = f": {field} is one of {', '.join(ordered)}" if len(ordered) <= SHOWN_CHOICES else ""
+            if field in NUMBERED:
+                listed = f": {field} is one of {numbered_choices(field)}"
             raise self.error(f"{field} {value!r} does not exist{hint}{listed}", token)
 
     @staticmethod

@@ -18,8 +18,9 @@ What a good frame (CRC/LRC ok) tells, per register with an address, in this orde
   gave it a read status (`protected`, `non-existent`: 16#8000 in a multi-register read).
 A Mask Write (FC22, [confirm] "mask") is a write of its register: its echo confirms the value the
 parameter memory gave the register (memory.remember_mask, Annotator.masked; where the slave's device
-follows no memory, known only when and_mask is 0: or_mask); where that value is not known, the write is
-counted and its parameter's state stays as it was, as for a write nothing confirmed.
+follows no memory, from the parameter's last value in the store, or or_mask where and_mask is 0); where that
+value is not known, the write is counted and its parameter's state stays as it was (none, or a read status),
+as for a write nothing confirmed.
 A parameter is a register of one table (Application Protocol 4.3: FC4 reads input registers, FC3/6/16/22/23
 holding registers: profiles.register_table), so input register 5 and holding register 5 are two
 (kept by slave, address and table), unless the slave's device reads both with one table (profile
@@ -377,7 +378,11 @@ class History:
         value = fields.or_mask if fields.and_mask == 0 else None
         if frame.kind is Kind.RESPONSE:
             masked = self._masked
-            known = masked.get(frame.number, value) if provisional else masked.pop(frame.number, value)
+            if frame.number in masked:  # (the slave's parameter memory reckoned it)
+                known = masked.get(frame.number) if provisional else masked.pop(frame.number)
+            else:  # no memory: the parameter's last value, as the store holds it
+                last = self.store.last(frame.slave, fields.address, self.tables(frame.slave)[frame.function])
+                known = masked_value(last, fields.and_mask, fields.or_mask)
             memory = self._replayed
             if memory is not None and not provisional:  # (as memory.remember_mask reckons it)
                 key = (self.tables(frame.slave)[frame.function], fields.address)

@@ -335,6 +335,11 @@ class ParameterTable:
             for (slave, address, table), s in sorted(self._parameters.items())
         ]
 
+    def last(self, slave: int, address: int, table: int = HOLDING_REGISTERS) -> int | None:
+        """The parameter's last value; None where its state is a read status, or none (not seen, not kept)."""
+        stats = self._parameters.get((slave, address, table))
+        return None if stats is None or stats.status is not None else stats.last
+
     def writes(self, slave: int, address: int, table: int = HOLDING_REGISTERS) -> int:
         """The writes counted of that parameter (0: none, or not kept)."""
         stats = self._parameters.get((slave, address, table))

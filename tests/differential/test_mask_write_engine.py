@@ -17,7 +17,7 @@ from dissector.render.history import History
 from helpers import rtu
 from test_timed_summary import assert_same, write_pcap
 
-# 8402 read 18, masked AND 00F2 OR 0025 (value not known: no memory), read 23; 8403 masked AND 0000 OR 0005
+# 8402 read 18, masked AND 00F2 OR 0025 (23, from the last value read), read 23; 8403 masked AND 0000 OR 0005
 # (5 whatever it held); 8405's mask refused (exception 01); slave 7 masked AND 0000 OR 1234, unanswered.
 FRAMES = [
     "0C 03 20D2 0001", "0C 03 02 0012",
@@ -84,4 +84,4 @@ def test_the_engine_draws_an_untracked_mask_write(tmp_path: Path, monkeypatch: p
     assert _python_masks(tmp_path, ["--report", str(tmp_path / "page.html")], monkeypatch) == []
     data = json.loads(pages[0].split('id="report-data">', 1)[1].split("</script>", 1)[0])
     points = {row["address"]: row["y"] for row in data["parameters"]}
-    assert points == {8402: [18, 23], 8403: [5, 5]}
+    assert points == {8402: [18, 23, 23], 8403: [5, 5]}  # (the echo gives 8402 23: test_mask_write_last)

@@ -62,7 +62,7 @@ def test_matches_is_a_case_insensitive_regular_expression_as_in_wireshark() -> N
          "status is one of ok, protected, non-existent, ambiguous (column 11)"),
         ('kind == "responce"',
          "kind 'responce' does not exist (did you mean 'response'?): "
-         "kind is one of request, response, exception, noise (column 9)"),
+         "kind is one of request (1), response (2), exception (3), noise (4) (column 9)"),
         ("value & 1.5", "& needs a whole-number mask such as 0x8000 (column 9)"),
         ('code & 1', "& tests bits of a number; code is a text (column 6)"),
         ("value == 3#12", "3#12: the radix before # is 2, 8 or 16 (column 10)"),

@@ -153,7 +153,7 @@ ERRORS = [
      "(column 11)\n  crc_ok == -1\n            ^"),
     ("crc_ok == \"1\"", "\"1\" cannot be found among the possible values for crc_ok: true, false or a whole "
      "number (0 is false, any other true) (column 11)\n  crc_ok == \"1\"\n            ^"),
-    ('kind == "req"', "kind 'req' does not exist (did you mean 'request'?): kind is one of request, response, exception, noise (column 9)\n  kind == \"req\"\n          ^"),
+    ('kind == "req"', "kind 'req' does not exist (did you mean 'request'?): kind is one of request (1), response (2), exception (3), noise (4) (column 9)\n  kind == \"req\"\n          ^"),
     ("", "empty filter: give an expression such as slave == 12 (column 1)\n  \n  ^"),
     ("slave 3", "expected an operator (== != ~= < <= > >= & in contains matches) after slave (column 7)\n  slave 3\n        ^"),
     ("address in 8400", "'8400' was unexpected in this context: expected { after in, a set such as {3, 4, 8400..8402} "
