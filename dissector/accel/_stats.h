@@ -309,13 +309,22 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
     Words written; /* the writes a normal answer confirms (data/modbus.toml [confirm]): counted and drawn */
     const Words *confirmed =
         answer != NULL && !(answer[1] & 0x80) && confirmed_writes(answer, writes, &written) ? &written : NULL;
-    /* A mask write of a slave that follows no memory (frame_is_quiet): a write of its register, the value
-     * known only where and_mask is 0, or_mask (its echo confirms it), else counted as 0 (history.History._mask) */
-    static const uint8_t unknown[2];
-    Words mask = {word(q + 2), 1, word(q + 4) ? unknown : q + 6};
-    if (rules[handled_index(function)].confirm == CONFIRM_MASK)
-        writes = &mask, confirmed = answer != NULL && !(answer[1] & 0x80) && !word(q + 4) ? &mask : NULL;
     int table = slave_table(st, s, slave, function), origin = st->tables[function];
+    /* A mask write of a slave that follows no memory (frame_is_quiet): a write of its register (counted as 0
+     * where and_mask is not 0), its echo confirming (old AND and_mask) OR (or_mask AND NOT and_mask), old the
+     * parameter's last value; nothing where that is not known (history.History._mask, memory.masked_value) */
+    static const uint8_t unknown[2];
+    unsigned and_mask = word(q + 4), known = !and_mask;
+    uint8_t result[2];
+    Words mask = {word(q + 2), 1, and_mask ? unknown : q + 6}, masked = {word(q + 2), 1, result};
+    if (rules[handled_index(function)].confirm == CONFIRM_MASK) {
+        uint32_t key = param_key(slave, table < 0 ? 0 : table, word(q + 2));
+        const Param *p = table < 0 ? NULL : dense_find(&st->params, &PARAM_KIND, &key);
+        unsigned old = p != NULL && p->has_last && p->status == NULL ? (known = 1, p->last) : 0;
+        unsigned value = (old & and_mask) | (word(q + 6) & ~and_mask & 0xFFFF);
+        result[0] = (uint8_t)(value >> 8), result[1] = (uint8_t)value;
+        writes = &mask, confirmed = answer != NULL && !(answer[1] & 0x80) && known ? &masked : NULL;
+    }
     if (table < 0 || (st->report != NULL && report_transaction(st->report, s, b, qf, af, confirmed, reads, number,
                                                                   table, origin) < 0))
         return -1;
@@ -546,6 +555,19 @@ static PyObject *stats_writes(Stats *st, PyObject *args) {
     return PyLong_FromUnsignedLong(p != NULL ? p->counts[PARAM_WRITES] : 0);
 }
 
+/* last(slave, address, table=0) -> the parameter's last value; None where its state is a read status, or none
+ * (not seen, not kept): a mask write's old value (history.History._mask). */
+static PyObject *stats_last(Stats *st, PyObject *args) {
+    unsigned char slave, table = 0;
+    unsigned short address;
+    if (!PyArg_ParseTuple(args, "bH|b", &slave, &address, &table)) return NULL;
+    if (table >= PARAM_TABLES) return PyErr_Format(PyExc_ValueError, "last: table 0..7");
+    uint32_t key = param_key(slave, table, address);
+    const Param *p = dense_find(&st->params, &PARAM_KIND, &key);
+    if (p == NULL || !p->has_last || p->status != NULL) Py_RETURN_NONE;
+    return PyLong_FromUnsignedLong(p->last);
+}
+
 /* polls() -> [(key, first frame, count, failed)] in the order the keys were first seen */
 static PyObject *stats_polls(Stats *st, PyObject *unused) {
     PyObject *rows = PyList_New((Py_ssize_t)st->polls.count);
@@ -739,6 +761,7 @@ static PyMethodDef stats_methods[] = {
     {"table", (PyCFunction)stats_table, METH_VARARGS,
      "table(max_rows, group_min) -> (pieces, expanded, count, totals): the --stats parameter table's rows"},
     {"polls", (PyCFunction)stats_polls, METH_NOARGS, "[(key, first frame, count, failed)]"},
+    {"last", (PyCFunction)stats_last, METH_VARARGS, "last(slave, address, table=0) -> its last value, or None"},
     {"writes", (PyCFunction)stats_writes, METH_VARARGS,
      "writes(slave, address, table=0): the writes counted of a parameter"},
     {NULL, NULL, 0, NULL},

@@ -71,6 +71,34 @@ class FilterContext:
             return None  # no run to ask (a library caller): not checked
         return spec | self.names.get(field, frozenset())
 
+    def refusal(self, field: str, value: Any) -> str | None:
+        """Why `value` is no value of the enumerated `field` in this run, with a suggestion (None: it is one,
+        or `field` is not enumerated)."""
+        import difflib
+
+        from dissector.render.filter_fields import REGISTER_TEXTS
+
+        if value == "" and field in REGISTER_TEXTS:
+            return None  # (a register's empty text: the value of one without it, as tshark reads the plugin's)
+        if field == "code" and self.codes is not None:
+            choices = tuple(sorted(self.codes))
+            if not choices or (isinstance(value, str) and value.upper() in self.codes) or value in choices:
+                return None  # compared as the maps spell it
+            close = difflib.get_close_matches(str(value).upper(), choices, n=3)
+            hint = f" (did you mean {', '.join(map(repr, close))}?)" if close else ""
+            return f"code {value!r} is no parameter code of this run's maps{hint}"
+        choices = self.choices(field)
+        if not choices or value in choices:
+            return None
+        ordered = sorted(choices) if isinstance(choices, frozenset) else list(choices)
+        lowered = {choice.lower(): choice for choice in ordered}
+        close = difflib.get_close_matches(str(value).lower(), list(lowered), n=1)
+        hint = f" (did you mean {lowered[close[0]]!r}?)" if close else ""
+        listed = f": {field} is one of {', '.join(ordered)}" if len(ordered) <= SHOWN_CHOICES else ""
+        if field in NUMBERED:
+            listed = f": {field} is one of {numbered_choices(field)}"
+        return f"{field} {value!r} does not exist{hint}{listed}"
+
     def captured(self, items: list[Any], last: float | None, packets: Any) -> float | None:
         """The time references of `items` as captured, before filtering, after an item at `last` (returned:
         theirs); a network capture's from its packets, as the time column (render/timefmt.py Clock.packets)."""

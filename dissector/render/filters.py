@@ -569,33 +569,9 @@ class _Parser:
 
     # -- messages -----------------------------------------------------------------------------
     def _check_choice(self, field: str, value: Any, token: Token) -> None:
-        if value == "" and field in REGISTER_TEXTS:
-            return  # (a register's empty text: the value of one without it, as tshark reads the plugin's)
-        choices = CHOICES.get(field)
-        if field == "code" and self.context.codes is not None:
-            choices = tuple(sorted(self.context.codes))
-            if isinstance(value, str) and value.upper() in self.context.codes:
-                return  # compared as the maps spell it below
-            if choices and value not in choices:
-                import difflib
-
-                close = difflib.get_close_matches(str(value).upper(), choices, n=3)
-                hint = f" (did you mean {', '.join(map(repr, close))}?)" if close else ""
-                raise self.error(f"code {value!r} is no parameter code of this run's maps{hint}", token)
-            return
-        if field in SPEC_NAMES:
-            choices = self.context.choices(field)
-        if choices and value not in choices:
-            import difflib
-
-            ordered = sorted(choices) if isinstance(choices, frozenset) else list(choices)
-            lowered = {choice.lower(): choice for choice in ordered}
-            close = difflib.get_close_matches(str(value).lower(), list(lowered), n=1)
-            hint = f" (did you mean {lowered[close[0]]!r}?)" if close else ""
-            listed = f": {field} is one of {', '.join(ordered)}" if len(ordered) <= SHOWN_CHOICES else ""
-            if field in NUMBERED:
-                listed = f": {field} is one of {numbered_choices(field)}"
-            raise self.error(f"{field} {value!r} does not exist{hint}{listed}", token)
+        refusal = self.context.refusal(field, value)
+        if refusal is not None:
+            raise self.error(refusal, token)
 
     @staticmethod
     def _describe(token: Token) -> str:

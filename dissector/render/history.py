@@ -18,9 +18,8 @@ What a good frame (CRC/LRC ok) tells, per register with an address, in this orde
   gave it a read status (`protected`, `non-existent`: 16#8000 in a multi-register read).
 A Mask Write (FC22, [confirm] "mask") is a write of its register: its echo confirms the value the
 parameter memory gave the register (memory.remember_mask, Annotator.masked; where the slave's device
-follows no memory, from the parameter's last value in the store, or or_mask where and_mask is 0); where that
-value is not known, the write is counted and its parameter's state stays as it was (none, or a read status),
-as for a write nothing confirmed.
+follows no memory, the store's last value masked, or or_mask where and_mask is 0); where not known, the
+write is counted and its parameter's state stays as it was, as for a write nothing confirmed.
 A parameter is a register of one table (Application Protocol 4.3: FC4 reads input registers, FC3/6/16/22/23
 holding registers: profiles.register_table), so input register 5 and holding register 5 are two
 (kept by slave, address and table), unless the slave's device reads both with one table (profile
@@ -75,7 +74,6 @@ keeps those too: ParameterTable._part), as the file counts them.
 from __future__ import annotations
 
 import dataclasses
-
 from collections.abc import Callable
 from typing import Any, Protocol
 
@@ -89,10 +87,8 @@ from dissector.render.stats_store import (
     CONFIRM, READ, REFUSED, TABLES, UNREADABLE, WRITE, WRITE_OBSERVED, new_store, slave_tables,
 )
 
-__all__ = [
-    "CONFIRM", "READ", "REFUSED", "UNREADABLE", "WRITE", "WRITE_OBSERVED", "History", "Listener",
-    "READ_FUNCTIONS", "UNREADABLE_STATUSES", "WRITE_FUNCTIONS",
-]
+__all__ = ["CONFIRM", "READ", "REFUSED", "UNREADABLE", "WRITE", "WRITE_OBSERVED", "History", "Listener",
+           "READ_FUNCTIONS", "UNREADABLE_STATUSES", "WRITE_FUNCTIONS"]
 
 # Codes whose registers are values read or written, as the protocol table states them: {3, 4, 23} and {6, 16, 23}.
 READ_FUNCTIONS = register_reads()
@@ -377,16 +373,15 @@ class History:
             return  # (an answer without its request, or malformed: nothing of a parameter known)
         value = fields.or_mask if fields.and_mask == 0 else None
         if frame.kind is Kind.RESPONSE:
-            masked = self._masked
-            if frame.number in masked:  # (the slave's parameter memory reckoned it)
+            masked, memory, table = self._masked, self._replayed, self.tables(frame.slave)[frame.function]
+            if memory is not None and not provisional:  # (as memory.remember_mask reckons it)
+                masked.pop(frame.number, None)
+                known = masked_value(memory.get((table, fields.address)), fields.and_mask, fields.or_mask)
+            elif frame.number in masked:  # (the slave's parameter memory reckoned it)
                 known = masked.get(frame.number) if provisional else masked.pop(frame.number)
             else:  # no memory: the parameter's last value, as the store holds it
-                last = self.store.last(frame.slave, fields.address, self.tables(frame.slave)[frame.function])
+                last = self.store.last(frame.slave, fields.address, table)
                 known = masked_value(last, fields.and_mask, fields.or_mask)
-            memory = self._replayed
-            if memory is not None and not provisional:  # (as memory.remember_mask reckons it)
-                key = (self.tables(frame.slave)[frame.function], fields.address)
-                known = masked_value(memory.get(key), fields.and_mask, fields.or_mask)
             if known is not None:
                 self._events(frame, [self._named(frame, fields.address, known)], CONFIRM, confirmed=True,
                              provisional=provisional)

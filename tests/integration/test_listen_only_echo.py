@@ -1,7 +1,7 @@
 """pymodbus's server (3.16) answers an FC8 04 (Force Listen Only Mode) with its sub-function alone, `01 08 00 04
 81 D9` (ForceListenOnlyModeResponse: no data word), though the spec's slave returns no response (Application
 Protocol 6.8.1). That frame, intact and too short for a request, is the 08/04's answer, warned, in vw3-decode
-(decode/pairing.py _echoes_listen_only; engine and Python stages alike) and the plugin (pairing.lua); the
+(decode/pairing.py _echoes_listen_only; engine and Python stages alike) and the plugin (lua/src/pairing.lua); the
 slave is taken to be in the mode all the same, and its next answer says it is not (pymodbus keeps answering).
 A master's repeat of the 08/04 holds the data word, 8 bytes: still a request, timed or not, within the timeout
 or not (test_fc8_pairing: a master that sends 08/04 every 100 ms). Before, the answer was read as a second,
