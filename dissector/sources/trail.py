@@ -27,7 +27,7 @@ from collections.abc import Iterable, Iterator, Sequence
 from typing import Any
 
 from dissector.model import Chunk, Item, Stamp
-from dissector.sources.common import NotedChunk
+from dissector.sources.common import NotedChunk, StoredChunk
 
 # The comments vw3-decode writes on the records of a -w copy (render/capturefile.py noise_comment,
 # CaptureOutput.write_items and release, joined by "; "): its decode's own words, which every decode of
@@ -63,6 +63,9 @@ class RecordTrail:
         self._parts: deque[tuple[int, Any]] = deque()  # (first byte, time) of each chunk (-w)
         self._commented: deque[tuple[int, int, tuple[str, ...]]] = deque()  # (first byte, end, comments)
         self._empty: deque[tuple[int, Any, tuple[str, ...]]] = deque()  # (offset, time, comments): -w's empty records
+        # (first byte, end, record's time) of each chunk decoded untimed whose record has a time (common.py
+        # StoredChunk): -w writes the items there rather than at the epoch
+        self._stored: deque[tuple[int, int, Any]] = deque()
         self.comments = 0  # comments read
         self.name: str | None = None  # the file being read, of a ring buffer's (None: the input's one)
         # (file, record, comments) of each record carrying comments
@@ -80,6 +83,8 @@ class RecordTrail:
                 continue
             if times:
                 parts.append((offset, chunk.time))
+                if type(chunk) is StoredChunk and chunk.stored is not None:
+                    self._stored.append((offset, offset + len(chunk.data), chunk.stored))
             offset += len(chunk.data)
             if isinstance(chunk, NotedChunk) and chunk.comments:  # (a PartChunk is one, with comments or none)
                 self._commented.append((start, offset, chunk.comments))
@@ -115,7 +120,8 @@ class RecordTrail:
             while len(parts) > 1 and parts[1][0] <= start:
                 parts.popleft()
             if not commented and (len(parts) < 2 or parts[1][0] >= start + len(item.raw)) \
-                    and not _inside(item, parts) and not (self._empty and self._empty[0][0] <= start + len(item.raw)):
+                    and not _inside(item, parts) and not (self._empty and self._empty[0][0] <= start + len(item.raw)) \
+                    and not (self._stored and self._stored[0][0] < start + len(item.raw)):
                 continue
             pieces = self.pieces(item)
             if pieces is not None:
@@ -135,7 +141,7 @@ class RecordTrail:
     def pieces(self, item: Item) -> list[Piece] | None:
         """The item's pieces, the first at the item's time; None for one piece without comments. An empty
         record read after one of its bytes (before its first: the input's first) is a piece of no byte there."""
-        found = self._pieces(item)
+        found = self._stored_times(item, self._pieces(item))
         empty = self._empty
         end = item.offset + len(item.raw)
         if not empty or empty[0][0] > end:
@@ -156,6 +162,21 @@ class RecordTrail:
                 index += 1
             split.insert(index, (at, time, comments, max(offset, item.offset)))
         return split
+
+    def _stored_times(self, item: Item, found: list[Piece] | None) -> list[Piece] | None:
+        """`found` with each untimed piece that begins in a chunk of a StoredChunk at that chunk's record time."""
+        stored, start = self._stored, item.offset
+        while stored and stored[0][1] <= start:
+            stored.popleft()
+        if not stored or stored[0][0] >= start + len(item.raw):
+            return found
+        pieces = found or [(item.length, item.time, (), item.offset)]
+        timed = []
+        for index, (end, time, comments, first) in enumerate(pieces):
+            begin = start + (pieces[index - 1][0] if index else 0)
+            record = next((at for low, high, at in stored if low <= begin < high), None)
+            timed.append((end, record if time is None and record is not None else time, comments, first))
+        return timed
 
     def _pieces(self, item: Item) -> list[Piece] | None:
         start = item.offset
