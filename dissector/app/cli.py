@@ -6,6 +6,7 @@ filter -> sinks); the terminal is injected (`Environment`) so tests run the whol
 from __future__ import annotations
 
 import argparse
+import re
 import contextlib
 import copy
 import gc
@@ -227,6 +228,7 @@ class Sinks:
                 self.valid_frames += 1
         predicate = self.predicate
         records: list[dict] | None = None
+        numbers = self._record_numbers(heard)  # (before -Y, as the pieces: every item's, in order)
         pieces = item_pieces(self.trail, heard)  # (before -Y: the trail forgets what is behind an item)
         if self.watch is not None:
             self.watch.observe(items)  # the time column never depends on -Y
@@ -244,14 +246,21 @@ class Sinks:
             # packet comments: -Y comment, as tshark's frame.comment (render/filter_fields.py RECORD_KEYS).
             noted = (pieces and comments_of(pieces)) or {}
             pairs = []
-            for item in items:
+            for index, item in enumerate(items):
                 record = item_to_dict(item)
                 if id(item) in noted:
                     record["comments"] = noted[id(item)]
+                if numbers is not None and numbers[index] is not None:
+                    record["record"] = numbers[index]
                 if predicate(record):
                     pairs.append((item, record))
             items = [item for item, _record in pairs]
             records = [record for _item, record in pairs]
+        elif numbers is not None and any(number is not None for number in numbers):
+            from dissector.render.jsonout import item_to_dict  # -T fields -e record only
+
+            records = [item_to_dict(item) | ({} if number is None else {"record": number})
+                       for item, number in zip(items, numbers)]
         if self.frames_left is not None:
             items = self._up_to_count(items)
             if records is not None:
@@ -278,6 +287,22 @@ class Sinks:
             self.output.write(items, self.extra, records, pieces and comments_of(pieces))
         if self.clock.packets is not None and heard:  # (the packets' times before these are asked no more)
             self.clock.packets.forget(heard[-1].offset)
+
+    def _record_numbers(self, items: list[Item]) -> list[int | None] | None:
+        """Each item's record number (tshark's frame.number of the pcap or pcapng record holding its first byte:
+        sources/trail.py record_of) where the trail numbers them (-T fields -e record); else None."""
+        trail = self.trail
+        if trail is None or trail.numbering is None:
+            return None
+        return [trail.record_of(item) for item in items]
+
+    @property
+    def numbers_records(self) -> bool:
+        """Does an output show or test the items' record numbers (-T fields -e record, -Y record: a filter naming
+        it, or a string holding the word, which costs a lookup per item and changes nothing)?"""
+        fields = self.options.output.fields
+        named = self.options.filter is not None and re.search(r"\brecord\b", self.options.filter) is not None
+        return named or (fields is not None and "record" in fields.fields)
 
     def restart_times(self) -> None:
         """A new input: its times count from its own first item (as the time column)."""
@@ -402,7 +427,7 @@ def _decode_inputs(
     chosen_over_all = choose_over_all(args, env, annotate)
     try:
         for (title, chunks, mode, take_warnings, recorded, timed, fix, (path, source_format),
-             bus, again, units, packets, damage) in inputs(args, env):
+             bus, again, units, packets, damage, numbering) in inputs(args, env):
             if sinks.done:
                 break
             line = input_line(path, source_format, args, bus)
@@ -436,7 +461,8 @@ def _decode_inputs(
                 recorded=recorded,
             )
             sinks.valid_frames = sinks.input_bytes = 0
-            chunks, sinks.trail = observe_records(chunks, source_format, sinks.pcap is not None)
+            chunks, sinks.trail = observe_records(chunks, source_format, sinks.pcap is not None,
+                                                  numbering if sinks.numbers_records else None)
             decode_one(chunks, mode, timed, fix, dissector, sinks, annotate, warn)
             tell_comments(sinks, path, env.stderr, title if bus is not None else None)
             sinks.copy_end.ended(None if sinks.done else recorded())  # (-c N: the copy ends at the Nth)

@@ -95,12 +95,25 @@ class RingSource:
         self.streaming = False
         self._warnings: list[str] = []
         self._defer = False  # (defer_damage)
+        self._packets_before = 0  # the records of the files before the current one (packet_number)
         self._damage: SourceError | None = None  # a file the ring could not open, after the files before it
 
     @property
     def recorded_until(self) -> Any:
         """The last file's (read last): when the capture ends."""
         return self.current.recorded_until
+
+    @property
+    def packet_number(self) -> int | None:
+        """The record number of the chunk given last, counted on from the files before (as in their mergecap -a,
+        tshark's frame.number); None: not a pcap or pcapng."""
+        number = getattr(self.current, "packet_number", None)
+        return None if number is None else self._packets_before + number
+
+    def number_of(self, chunk: Chunk) -> int | None:
+        """The record number of `chunk`, the next given (sources/reader.py Source.number_of), counted on."""
+        number = self.current.number_of(chunk) if hasattr(self.current, "number_of") else None
+        return None if number is None else self._packets_before + number
 
     @property
     def time_units(self) -> Any:
@@ -152,6 +165,7 @@ class RingSource:
                         raise
                     self._damage = error
                     return
+                self._packets_before += getattr(self.current, "packet_total", 0) or 0
                 self.current.close()
                 self.current = opened
                 self._defer_file(opened)

@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import re
 from collections import deque
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from typing import Any
 
 from dissector.model import Chunk, Item, Stamp
@@ -57,8 +57,12 @@ class RecordTrail:
     """The trail of one decode's stream (a ring buffer's files are one): `observe` its chunks, then ask
     `pieces` of each item, in order. `times`: keep where the time changes (-w)."""
 
-    def __init__(self, times: bool) -> None:
+    def __init__(self, times: bool, numbering: Callable[[Chunk], int | None] | None = None) -> None:
         self.times = times
+        # The record number (tshark's frame.number) of the chunk observed (sources/reader.py Source.packet_number):
+        # where each record with bytes begins, (stream offset, number), for record_of (-T fields' `record`).
+        self.numbering = numbering
+        self._numbers: deque[tuple[int, int | None]] = deque()
         self.offset = 0  # bytes observed: the next chunk's offset, as the framers count
         self._parts: deque[tuple[int, Any]] = deque()  # (first byte, time) of each chunk (-w)
         self._commented: deque[tuple[int, int, tuple[str, ...]]] = deque()  # (first byte, end, comments)
@@ -74,13 +78,17 @@ class RecordTrail:
     def observe(self, chunks: Iterable[Chunk]) -> Iterator[Chunk]:
         times, parts = self.times, self._parts
         offset = start = self.offset  # (the record being read starts at `start`)
+        numbering = self.numbering
         for chunk in chunks:
+            number = numbering(chunk) if numbering is not None else None  # (every chunk's, in order: Source.number_of)
             if not chunk.data and type(chunk) in (Chunk, NotedChunk):  # (an empty record: common.py record_chunks)
                 if times:
                     self._empty.append((offset, chunk.time, getattr(chunk, "comments", ())))
                 start = offset
                 yield chunk
                 continue
+            if numbering is not None and offset == start:  # (a record's first bytes)
+                self._numbers.append((offset, number))
             if times:
                 parts.append((offset, chunk.time))
                 if type(chunk) is StoredChunk and chunk.stored is not None:
@@ -96,14 +104,25 @@ class RecordTrail:
             yield chunk
 
     def observe_reads(self, starts: Sequence[int], times: list[int | None] | None, end: int,
-                      empty: Sequence[tuple[int, int | None]] = ()) -> None:
+                      empty: Sequence[tuple[int, int | None]] = (), numbers: Sequence[int] = ()) -> None:
         """Reads taken in bulk, which carry no comments (a pcap's records, accel/records.py observe_block),
         as `observe` takes them: where each begins, its time in integer ns (-w), the end of the last; `empty`:
-        the empty records among them, (offset, time in ns or None)."""
+        the empty records among them, (offset, time in ns or None); `numbers`: each read's record number (when
+        numbering)."""
+        if self.numbering is not None:
+            self._numbers.extend(zip(starts, numbers))
         if self.times and times is not None:
             self._parts.extend(zip(starts, times))
             self._empty.extend((offset, None if ns is None else Stamp(ns), ()) for offset, ns in empty)
         self.offset = end
+
+    def record_of(self, item: Item) -> int | None:
+        """The record number (tshark's frame.number) of the record holding the item's first byte; None where the
+        input numbers no record. Asked of the items in order: what lies before is forgotten."""
+        numbers, start = self._numbers, item.offset
+        while len(numbers) > 1 and numbers[1][0] <= start:
+            numbers.popleft()
+        return numbers[0][1] if numbers and numbers[0][0] <= start else None
 
     @property
     def idle(self) -> bool:
