@@ -32,6 +32,8 @@ import re
 from collections.abc import Iterator
 
 from dissector.model import Chunk, Stamp
+from dissector.protocol import table
+from dissector.protocol.crc import crc_bytes
 from dissector.sources.common import Input, SourceError, WarningLog
 from dissector.sources.hexdump import Days, HexLineError, StampedLines, _timestamp, cut_short, ended_lines
 
@@ -216,22 +218,19 @@ class _Mirror:
 
 
 def _sent_by_a_server(data: bytearray) -> bool:
-    """Are the bytes read back, sent since the run before, a frame only a server sends (a response or an
-    exception by its shape), or a request whose answer cannot repeat it (a read: its answer's length differs)? A
-    one-end log reads back only its requests' echoes: these were read by the other end of the link, in the same
-    log (a log of both ends without decode lines nor the ends' own lines showed each frame twice)."""
-    from dissector.framing.answers import answer_length
-    from dissector.model import Frame, Kind
-    from dissector.pipeline import dissect_bytes
-
-    items = dissect_bytes(bytes(data))
-    if len(items) != 1 or not isinstance(items[0], Frame) or not items[0].crc_ok:
+    """Are the bytes read back, sent since the run before, an RTU frame (its CRC good) no answer repeats whole: an
+    exception, or a function whose answer does not repeat its request (a read: protocol/table.py `echo`) or not
+    whole (FC15/FC16 answer 8 bytes of a longer request)? A one-end log reads back only its requests' echoes:
+    these were read by the other end of the link, in the same log (a log of both ends without decode lines nor
+    the ends' own lines showed each frame twice)."""
+    if len(data) < 4 or crc_bytes(bytes(data[:-2])) != data[-2:]:
         return False
-    frame = items[0]
-    if frame.kind is not Kind.REQUEST:
+    if data[1] & 0x80:
         return True
-    length = answer_length(frame)
-    return length is not None and length != len(data)
+    entry = table.TABLE.get(data[1])
+    if entry is None:
+        return False
+    return not entry.echo or entry.request.length != entry.response.length
 
 
 def _ends(line: str, ends: set[str]) -> None:
