@@ -207,7 +207,7 @@ def observe_block(trail: RecordTrail, block: Block, empty: list[tuple[int, int |
 def record_numbers(buffer: bytes, position: int, end: int, reader: Any) -> list[int]:
     """The record numbers (tshark's frame.number) of the records with bytes among the standard ones of `buffer`
     from `position` to `end` (a bulk scan's reads, one a record: scan_pcap stops before a longer one), the
-    reader having read reader.record before them; its empty records are numbered, not read."""
+    `reader` having read its `record` records before them; its empty records are numbered, not read."""
     header = struct.Struct(reader.order + "IIII")
     number, found = reader.record, []
     while position + 16 <= end:

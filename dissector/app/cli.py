@@ -6,7 +6,6 @@ filter -> sinks); the terminal is injected (`Environment`) so tests run the whol
 from __future__ import annotations
 
 import argparse
-import re
 import contextlib
 import copy
 import gc
@@ -36,10 +35,9 @@ from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.app.inputs import (
-    CopyEnd, choose_over_all, choose_profiles_first, comments_of, first_interface_units, input_line,
-    inputs, is_pcapng_file, item_pieces, keep_interface, no_frame_warning, observe_records, profile_notes,
-    several_captures,
-    tell_comments, write_interface, write_units,
+    CopyEnd, choose_over_all, choose_profiles_first, comments_of, first_interface_units, input_line, inputs,
+    is_pcapng_file, item_pieces, item_record, keep_interface, no_frame_warning, numbered_records, numbers_records,
+    observe_records, profile_notes, record_numbers, several_captures, tell_comments, write_interface, write_units,
 )
 from dissector.sources.reader import SourceError
 from dissector.sources.trail import RecordTrail
@@ -228,7 +226,7 @@ class Sinks:
                 self.valid_frames += 1
         predicate = self.predicate
         records: list[dict] | None = None
-        numbers = self._record_numbers(heard)  # (before -Y, as the pieces: every item's, in order)
+        numbers = record_numbers(self.trail, heard)  # (before -Y, as the pieces: every item's, in order)
         pieces = item_pieces(self.trail, heard)  # (before -Y: the trail forgets what is behind an item)
         if self.watch is not None:
             self.watch.observe(items)  # the time column never depends on -Y
@@ -239,28 +237,19 @@ class Sinks:
         if self.health is not None:
             self.health.add_items(items)
         if predicate is not None:
-            from dissector.render.jsonout import item_to_dict  # -Y only
-
             self._filter_times(items)
             # The filter reads the NDJSON form; keep it for --json rather than building it twice. With its
             # packet comments: -Y comment, as tshark's frame.comment (render/filter_fields.py RECORD_KEYS).
             noted = (pieces and comments_of(pieces)) or {}
             pairs = []
-            for index, item in enumerate(items):
-                record = item_to_dict(item)
-                if id(item) in noted:
-                    record["comments"] = noted[id(item)]
-                if numbers is not None and numbers[index] is not None:
-                    record["record"] = numbers[index]
+            for item, number in zip(items, numbers or [None] * len(items)):
+                record = item_record(item, noted.get(id(item)), number)
                 if predicate(record):
                     pairs.append((item, record))
             items = [item for item, _record in pairs]
             records = [record for _item, record in pairs]
-        elif numbers is not None and any(number is not None for number in numbers):
-            from dissector.render.jsonout import item_to_dict  # -T fields -e record only
-
-            records = [item_to_dict(item) | ({} if number is None else {"record": number})
-                       for item, number in zip(items, numbers)]
+        elif numbers is not None:
+            records = numbered_records(items, numbers)
         if self.frames_left is not None:
             items = self._up_to_count(items)
             if records is not None:
@@ -287,22 +276,6 @@ class Sinks:
             self.output.write(items, self.extra, records, pieces and comments_of(pieces))
         if self.clock.packets is not None and heard:  # (the packets' times before these are asked no more)
             self.clock.packets.forget(heard[-1].offset)
-
-    def _record_numbers(self, items: list[Item]) -> list[int | None] | None:
-        """Each item's record number (tshark's frame.number of the pcap or pcapng record holding its first byte:
-        sources/trail.py record_of) where the trail numbers them (-T fields -e record); else None."""
-        trail = self.trail
-        if trail is None or trail.numbering is None:
-            return None
-        return [trail.record_of(item) for item in items]
-
-    @property
-    def numbers_records(self) -> bool:
-        """Does an output show or test the items' record numbers (-T fields -e record, -Y record: a filter naming
-        it, or a string holding the word, which costs a lookup per item and changes nothing)?"""
-        fields = self.options.output.fields
-        named = self.options.filter is not None and re.search(r"\brecord\b", self.options.filter) is not None
-        return named or (fields is not None and "record" in fields.fields)
 
     def restart_times(self) -> None:
         """A new input: its times count from its own first item (as the time column)."""
@@ -462,7 +435,7 @@ def _decode_inputs(
             )
             sinks.valid_frames = sinks.input_bytes = 0
             chunks, sinks.trail = observe_records(chunks, source_format, sinks.pcap is not None,
-                                                  numbering if sinks.numbers_records else None)
+                                                  numbering if numbers_records(args) else None)
             decode_one(chunks, mode, timed, fix, dissector, sinks, annotate, warn)
             tell_comments(sinks, path, env.stderr, title if bus is not None else None)
             sinks.copy_end.ended(None if sinks.done else recorded())  # (-c N: the copy ends at the Nth)

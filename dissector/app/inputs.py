@@ -4,6 +4,8 @@ pcapng keeps for each.
 """
 from __future__ import annotations
 
+import re
+
 import contextlib
 import struct
 from itertools import islice
@@ -349,6 +351,42 @@ def observe_records(chunks: Iterable[Chunk], source_format: str | None,
         return chunks, None
     trail = RecordTrail(times=writing, numbering=numbering)
     return observed(chunks, trail), trail
+
+
+def numbers_records(args: DecodeOptions) -> bool:
+    """Does an output show or test the items' record numbers (-T fields -e record, -Y record: a filter naming
+    it, or a string holding the word, which costs a lookup per item and changes nothing)?"""
+    fields = args.output.fields
+    named = args.filter is not None and re.search(r"\brecord\b", args.filter) is not None
+    return named or (fields is not None and "record" in fields.fields)
+
+
+def record_numbers(trail: RecordTrail | None, items: list[Item]) -> list[int | None] | None:
+    """Each item's record number (tshark's frame.number of the pcap or pcapng record holding its first byte:
+    sources/trail.py record_of) where the trail numbers them (numbers_records); else None."""
+    if trail is None or trail.numbering is None:
+        return None
+    return [trail.record_of(item) for item in items]
+
+
+def item_record(item: Item, comments: list[str] | None, number: int | None) -> dict:
+    """The item's NDJSON dict (as -Y reads it), with its packet comments (`comments`) and record number (`record`)
+    where it has some."""
+    from dissector.render.jsonout import item_to_dict
+
+    record = item_to_dict(item)
+    if comments is not None:
+        record["comments"] = comments
+    if number is not None:
+        record["record"] = number
+    return record
+
+
+def numbered_records(items: list[Item], numbers: list[int | None]) -> list[dict] | None:
+    """The items' NDJSON dicts with their record numbers (`record`, -T fields -e record); None where none has one."""
+    if all(number is None for number in numbers):
+        return None
+    return [item_record(item, None, number) for item, number in zip(items, numbers)]
 
 
 def item_pieces(trail: RecordTrail | None, items: list[Item]) -> dict[int, list[Piece]] | None:
