@@ -362,8 +362,8 @@ def numbers_records(args: DecodeOptions) -> bool:
 
 
 def record_numbers(trail: RecordTrail | None, items: list[Item]) -> list[int | None] | None:
-    """Each item's record number (tshark's frame.number of the pcap or pcapng record holding its first byte:
-    sources/trail.py record_of) where the trail numbers them (numbers_records); else None."""
+    """Each item's record number (tshark's frame.number of the pcap or pcapng record holding its last byte, where
+    Wireshark shows it: sources/trail.py record_of) where the trail numbers them (numbers_records); else None."""
     if trail is None or trail.numbering is None:
         return None
     return [trail.record_of(item) for item in items]

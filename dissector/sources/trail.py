@@ -117,12 +117,14 @@ class RecordTrail:
         self.offset = end
 
     def record_of(self, item: Item) -> int | None:
-        """The record number (tshark's frame.number) of the record holding the item's first byte; None where the
-        input numbers no record. Asked of the items in order: what lies before is forgotten."""
-        numbers, start = self._numbers, item.offset
-        while len(numbers) > 1 and numbers[1][0] <= start:
+        """The record number (tshark's frame.number) of the record holding the item's last byte, where Wireshark
+        shows it (the plugin shows a frame split over records in the record that completes it, and its
+        request_frame and response_frame name that one); None where the input numbers no record. Asked of the
+        items in order: what lies before is forgotten."""
+        numbers, last = self._numbers, item.offset + max(len(item.raw), 1) - 1
+        while len(numbers) > 1 and numbers[1][0] <= last:
             numbers.popleft()
-        return numbers[0][1] if numbers and numbers[0][0] <= start else None
+        return numbers[0][1] if numbers and numbers[0][0] <= last else None
 
     @property
     def idle(self) -> bool:

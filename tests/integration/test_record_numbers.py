@@ -1,5 +1,6 @@
-"""-T fields -e record: the number of the capture record holding an item's first byte, tshark's frame.number (the
-plugin's request_frame and response_frame count them). vw3-decode numbers its items (frames and noise runs) on
+"""-T fields -e record: the number of the capture record holding an item's last byte, tshark's frame.number of the
+packet where Wireshark shows it (the plugin shows a frame split over records in the record completing it; its
+request_frame and response_frame name that record). vw3-decode numbers its items (frames and noise runs) on
 their own, so after a record of no byte (an RTAC event, an empty record), a frame split over records, or another
 interface's packets, its item N is not Wireshark's frame N: `record` is, for every pcap and pcapng record (empty
 ones and other interfaces' counted), through a ring buffer's files (numbered on, as their mergecap -a), in the
@@ -44,11 +45,12 @@ def _tshark(path: Path, *options: str) -> list[str]:
 @pytest.mark.parametrize("suffix", ["pcap", "pcapng"])
 def test_empty_records_and_split_frames(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool,
                                         suffix: str) -> None:
-    """test_empty_records_inside.py's capture: records 2, 4, 6, 10, 11 empty, a request split over 5 and 7."""
+    """test_empty_records_inside.py's capture: records 2, 4, 6, 10, 11 empty, a request split over 5 and 7 (the
+    plugin shows it in 7, its answer's request_frame: test_empty_records_inside.py)."""
     use_engine(monkeypatch, pure)
     path = capture(tmp_path, suffix)
     assert _fields(path, "frame", "record", "kind") == [
-        "1\t1\trequest", "2\t3\tresponse", "3\t5\trequest", "4\t8\tresponse", "5\t9\trequest"]
+        "1\t1\trequest", "2\t3\tresponse", "3\t7\trequest", "4\t8\tresponse", "5\t9\trequest"]
     assert _tshark(path, "-e", "frame.number", "-e", "frame.len")[:9:2] == ["1\t8", "3\t9", "5\t4", "7\t4", "9\t8"]
     status, out, err = run_cli(["-n", "-Y", "record >= 8", str(path)])  # (-Y record: Wireshark's packet 8 on)
     assert (status, [line.split()[0] for line in out.splitlines()], err) == (0, ["4", "5"], "")
