@@ -143,7 +143,8 @@ class BlockBuilder:
                 buffer, position, big_endian, reader.units, self.offset, previous, self.timing.char_time,
                 self.timing.t35, reader.chunk_size,
             )
-            numbers = record_numbers(buffer, begun, position, reader) if trail is not None and trail.numbering else []
+            numbers = [trail.number_base + number for number in record_numbers(buffer, begun, position, reader)] \
+                if trail is not None and trail.numbering else []
             reader.record += records
             if last is not None:
                 self.previous = (last[0], Stamp(last[1]) if last[2] else None)
@@ -257,6 +258,7 @@ def blocks_from_chunks(chunks: Iterable[Chunk], timing: LineTiming,
         for each in sources():
             if trail is not None:
                 trail.name = each.name  # (its records named by their file)
+                trail.number_base = source.packets_before  # (its records numbered on from the files before)
             yield from source_blocks(each, timing, builder, trail)
         return
     if hasattr(source, "parts"):

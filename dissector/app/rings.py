@@ -110,6 +110,11 @@ class RingSource:
         number = getattr(self.current, "packet_number", None)
         return None if number is None else self._packets_before + number
 
+    @property
+    def packets_before(self) -> int:
+        """The records of the files before the current one (its numbers go on from them)."""
+        return self._packets_before
+
     def number_of(self, chunk: Chunk) -> int | None:
         """The record number of `chunk`, the next given (sources/reader.py Source.number_of), counted on."""
         number = self.current.number_of(chunk) if hasattr(self.current, "number_of") else None

@@ -63,6 +63,7 @@ class RecordTrail:
         # where each record with bytes begins, (stream offset, number), for record_of (-T fields' `record`).
         self.numbering = numbering
         self._numbers: deque[tuple[int, int | None]] = deque()
+        self.number_base = 0  # the records of a ring's files before the one read in bulk (accel/records.py)
         self.offset = 0  # bytes observed: the next chunk's offset, as the framers count
         self._parts: deque[tuple[int, Any]] = deque()  # (first byte, time) of each chunk (-w)
         self._commented: deque[tuple[int, int, tuple[str, ...]]] = deque()  # (first byte, end, comments)

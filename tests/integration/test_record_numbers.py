@@ -96,3 +96,22 @@ def test_several_interfaces_and_a_ring(tmp_path: Path, monkeypatch: pytest.Monke
 def test_other_inputs_have_none(tmp_path: Path) -> None:
     assert run_cli(["-T", "fields", "-e", "frame", "-e", "record", "--hex", "0C 03 20 D0 00 03 0E EF"]) == (
         0, "1\t\n", "")
+
+
+@BOTH
+def test_a_ring_of_pcaps_read_in_bulk(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    """Each file of a pcap ring read in bulk by the engine numbers on from the files before (it began at 1 again)."""
+    use_engine(monkeypatch, pure)
+    files, micros = [], 0
+    for number in (1, 2):
+        path = tmp_path / f"bus_0000{number}_2026010100000{number}.pcap"
+        with path.open("wb") as stream:
+            writer = PcapWriter(stream, flush=False)
+            for _poll in range(1000):
+                writer.write(REQUEST, Stamp((T0 + micros) * 1000))
+                writer.write(ANSWER, Stamp((T0 + micros + 5000) * 1000))
+                micros += 100_000
+        files.append(str(path))
+    lines = _fields(files, "frame", "record")
+    assert len(lines) == 4000 and all(line.split("\t")[0] == line.split("\t")[1] for line in lines), \
+        [line for line in lines if line.split("\t")[0] != line.split("\t")[1]][:3]
