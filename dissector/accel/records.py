@@ -143,6 +143,8 @@ class BlockBuilder:
                 buffer, position, big_endian, reader.units, self.offset, previous, self.timing.char_time,
                 self.timing.t35, reader.chunk_size,
             )
+            numbers = [trail.number_base + number for number in record_numbers(buffer, begun, position, reader)] \
+                if trail is not None and trail.numbering else []
             reader.record += records
             if last is not None:
                 self.previous = (last[0], Stamp(last[1]) if last[2] else None)
@@ -166,7 +168,7 @@ class BlockBuilder:
                 empty = empty_records(buffer, begun, position, reader, offset)
             if flags:
                 if trail is not None:
-                    observe_block(trail, block, empty)
+                    observe_block(trail, block, empty, numbers)
                 yield block
             elif empty and trail is not None:
                 trail.observe_reads([], [], self.offset, empty)
@@ -192,13 +194,30 @@ def last_record_time(buffer: bytes, end: int, reader: Any) -> Stamp | None:
     return time
 
 
-def observe_block(trail: RecordTrail, block: Block, empty: list[tuple[int, int | None]] | None = None) -> None:
+def observe_block(trail: RecordTrail, block: Block, empty: list[tuple[int, int | None]] | None = None,
+                  numbers: list[int] | None = None) -> None:
     """A block read in bulk (a pcap's records: no comments) to the trail, as trail.observe takes chunks:
-    where each read begins and, for -w, its time (integer ns: a Stamp is made only where an item is cut)."""
+    where each read begins and, for -w, its time (integer ns: a Stamp is made only where an item is cut);
+    `numbers`: each read's record number (record_numbers)."""
     times = None
     if trail.times:
         times = [ns if flag & TIMED else None for ns, flag in zip(block.times, block.flags)]
-    trail.observe_reads(block.starts, times, block.starts[0] + len(block.data), empty or ())
+    trail.observe_reads(block.starts, times, block.starts[0] + len(block.data), empty or (), numbers or ())
+
+
+def record_numbers(buffer: bytes, position: int, end: int, reader: Any) -> list[int]:
+    """The record numbers (tshark's frame.number) of the records with bytes among the standard ones of `buffer`
+    from `position` to `end` (a bulk scan's reads, one a record: scan_pcap stops before a longer one), the
+    `reader` having read its `record` records before them; its empty records are numbered, not read."""
+    header = struct.Struct(reader.order + "IIII")
+    number, found = reader.record, []
+    while position + 16 <= end:
+        captured = header.unpack_from(buffer, position)[2]
+        number += 1
+        if captured:
+            found.append(number)
+        position += 16 + captured
+    return found
 
 
 def source_blocks(source: Any, timing: LineTiming, builder: BlockBuilder | None = None,
@@ -239,6 +258,7 @@ def blocks_from_chunks(chunks: Iterable[Chunk], timing: LineTiming,
         for each in sources():
             if trail is not None:
                 trail.name = each.name  # (its records named by their file)
+                trail.number_base = source.packets_before  # (its records numbered on from the files before)
             yield from source_blocks(each, timing, builder, trail)
         return
     if hasattr(source, "parts"):

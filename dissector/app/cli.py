@@ -35,10 +35,9 @@ from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.app.inputs import (
-    CopyEnd, choose_over_all, choose_profiles_first, comments_of, first_interface_units, input_line,
-    inputs, is_pcapng_file, item_pieces, keep_interface, no_frame_warning, observe_records, profile_notes,
-    several_captures,
-    tell_comments, write_interface, write_units,
+    CopyEnd, choose_over_all, choose_profiles_first, comments_of, first_interface_units, input_line, inputs,
+    is_pcapng_file, item_pieces, item_record, keep_interface, no_frame_warning, numbered_records, numbers_records,
+    observe_records, profile_notes, record_numbers, several_captures, tell_comments, write_interface, write_units,
 )
 from dissector.sources.reader import SourceError
 from dissector.sources.trail import RecordTrail
@@ -227,6 +226,7 @@ class Sinks:
                 self.valid_frames += 1
         predicate = self.predicate
         records: list[dict] | None = None
+        numbers = record_numbers(self.trail, heard)  # (before -Y, as the pieces: every item's, in order)
         pieces = item_pieces(self.trail, heard)  # (before -Y: the trail forgets what is behind an item)
         if self.watch is not None:
             self.watch.observe(items)  # the time column never depends on -Y
@@ -237,21 +237,19 @@ class Sinks:
         if self.health is not None:
             self.health.add_items(items)
         if predicate is not None:
-            from dissector.render.jsonout import item_to_dict  # -Y only
-
             self._filter_times(items)
             # The filter reads the NDJSON form; keep it for --json rather than building it twice. With its
             # packet comments: -Y comment, as tshark's frame.comment (render/filter_fields.py RECORD_KEYS).
             noted = (pieces and comments_of(pieces)) or {}
             pairs = []
-            for item in items:
-                record = item_to_dict(item)
-                if id(item) in noted:
-                    record["comments"] = noted[id(item)]
+            for item, number in zip(items, numbers or [None] * len(items)):
+                record = item_record(item, noted.get(id(item)), number)
                 if predicate(record):
                     pairs.append((item, record))
             items = [item for item, _record in pairs]
             records = [record for _item, record in pairs]
+        elif numbers is not None:
+            records = numbered_records(items, numbers)
         if self.frames_left is not None:
             items = self._up_to_count(items)
             if records is not None:
@@ -402,7 +400,7 @@ def _decode_inputs(
     chosen_over_all = choose_over_all(args, env, annotate)
     try:
         for (title, chunks, mode, take_warnings, recorded, timed, fix, (path, source_format),
-             bus, again, units, packets, damage) in inputs(args, env):
+             bus, again, units, packets, damage, numbering) in inputs(args, env):
             if sinks.done:
                 break
             line = input_line(path, source_format, args, bus)
@@ -436,7 +434,8 @@ def _decode_inputs(
                 recorded=recorded,
             )
             sinks.valid_frames = sinks.input_bytes = 0
-            chunks, sinks.trail = observe_records(chunks, source_format, sinks.pcap is not None)
+            chunks, sinks.trail = observe_records(chunks, source_format, sinks.pcap is not None,
+                                                  numbering if numbers_records(args) else None)
             decode_one(chunks, mode, timed, fix, dissector, sinks, annotate, warn)
             tell_comments(sinks, path, env.stderr, title if bus is not None else None)
             sinks.copy_end.ended(None if sinks.done else recorded())  # (-c N: the copy ends at the Nth)

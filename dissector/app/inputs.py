@@ -4,6 +4,8 @@ pcapng keeps for each.
 """
 from __future__ import annotations
 
+import re
+
 import contextlib
 import struct
 from itertools import islice
@@ -34,12 +36,12 @@ TIMED_TEXTS = ("hexdump", "traffic", "tshark-x", "pymodbus")  # of those, texts:
 
 Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], Callable[[], Any], bool, Fix,
               tuple[str | None, str | None], "PacketInterface | None", "Callable[[], Any] | None", int | None, Any,
-              Callable[[], Any]]
+              Callable[[], Any], "Callable[[Chunk], int | None] | None"]
 
 
 def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
     """(title, chunks, mode, take_warnings, recorded, timed, fix, (path, format), interface, again, units, packets,
-    damage) per
+    damage, numbering) per
     input: the files of one ring buffer are one input (app/rings.py), read as one stream, `path` its
     first; a pcapng file with packets from several interfaces is one input per interface, each its own bus
     (sources/interfaces.py), titled `file: interface name`; `recorded`: once read, when its last record was
@@ -47,7 +49,8 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
     for profile `auto` to read it twice (None: standard input, a FIFO, --hex: not read twice); `units`: its
     records' time units a second, whose precision the time column shows (None: not a pcap or pcapng); `packets`: a
     network capture's packet times, the time column's references (sources/ethernet.py PacketTimes; else None);
-    `damage`: once read, what damaged the input after its first packets (Source.damage; None: nothing)."""
+    `damage`: once read, what damaged the input after its first packets (Source.damage; None: nothing); `numbering`:
+    a pcap's or pcapng's record number of the chunk read last (Source.packet_number; None: not one)."""
     from dissector.sources.common import rereadable
 
     captures = group_files(args.files)
@@ -57,7 +60,7 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
         fix = typed.fix if typed.repairs else None
         # (timed: its arguments are records, whose ends the compiled timed path keeps; the raw path drops them)
         yield (("--hex" if several else None), typed.chunks, typed.mode, list, lambda: None, True, fix, (None, None),
-               None, None, None, None, lambda: None)
+               None, None, None, None, lambda: None, None)
     for shown_name, files in captures:
         path = files[0]
         buses = packet_interfaces(path, _ports(args)) if path != "-" and args.format in (None, "pcap", "pcapng") else []
@@ -80,7 +83,8 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
             yield ((title if several or bus is not None else None), chunks, source.mode, take_warnings,
                    lambda source=source: source.recorded_until, timed, None, (path, source.format), bus,
                    again, units, getattr(source, "packet_times", None),
-                   lambda source=source: getattr(source, "damage", None))
+                   lambda source=source: getattr(source, "damage", None),
+                   getattr(source, "number_of", None))
 
 
 def _named(take_warnings: Callable[[], list[str]], name: str, path: str) -> Callable[[], list[str]]:
@@ -338,13 +342,51 @@ def _deferred(source: Any) -> Any:
 
 
 def observe_records(chunks: Iterable[Chunk], source_format: str | None,
-                    writing: bool) -> tuple[Iterable[Chunk], RecordTrail | None]:
-    """The chunks through a trail of their records (sources/trail.py): with -w (its times and comments), or
-    of a pcapng (its packet comments); as they are otherwise (no other input has comments)."""
-    if not writing and source_format != "pcapng":
+                    writing: bool, numbering: Callable[[Chunk], int | None] | None = None
+                    ) -> tuple[Iterable[Chunk], RecordTrail | None]:
+    """The chunks through a trail of their records (sources/trail.py): with -w (its times and comments), of a
+    pcapng (its packet comments), or `numbering` (a pcap's or pcapng's record numbers, -T fields' `record`:
+    Source.packet_number); as they are otherwise (no other input has comments)."""
+    if not writing and source_format != "pcapng" and numbering is None:
         return chunks, None
-    trail = RecordTrail(times=writing)
+    trail = RecordTrail(times=writing, numbering=numbering)
     return observed(chunks, trail), trail
+
+
+def numbers_records(args: DecodeOptions) -> bool:
+    """Does an output show or test the items' record numbers (-T fields -e record, -Y record: a filter naming
+    it, or a string holding the word, which costs a lookup per item and changes nothing)?"""
+    fields = args.output.fields
+    named = args.filter is not None and re.search(r"\brecord\b", args.filter) is not None
+    return named or (fields is not None and "record" in fields.fields)
+
+
+def record_numbers(trail: RecordTrail | None, items: list[Item]) -> list[int | None] | None:
+    """Each item's record number (tshark's frame.number of the pcap or pcapng record holding its last byte, where
+    Wireshark shows it: sources/trail.py record_of) where the trail numbers them (numbers_records); else None."""
+    if trail is None or trail.numbering is None:
+        return None
+    return [trail.record_of(item) for item in items]
+
+
+def item_record(item: Item, comments: list[str] | None, number: int | None) -> dict:
+    """The item's NDJSON dict (as -Y reads it), with its packet comments (`comments`) and record number (`record`)
+    where it has some."""
+    from dissector.render.jsonout import item_to_dict
+
+    record = item_to_dict(item)
+    if comments is not None:
+        record["comments"] = comments
+    if number is not None:
+        record["record"] = number
+    return record
+
+
+def numbered_records(items: list[Item], numbers: list[int | None]) -> list[dict] | None:
+    """The items' NDJSON dicts with their record numbers (`record`, -T fields -e record); None where none has one."""
+    if all(number is None for number in numbers):
+        return None
+    return [item_record(item, None, number) for item, number in zip(items, numbers)]
 
 
 def item_pieces(trail: RecordTrail | None, items: list[Item]) -> dict[int, list[Piece]] | None:
@@ -407,7 +449,7 @@ def choose_over_all(args: DecodeOptions, env: Any, annotate: Any) -> bool:
     listed = inputs(args, env)
     try:
         for (title, chunks, mode, _warnings, _recorded, _timed, fix, (path, source_format), bus,
-             again, _units, _packets, _damage) in listed:
+             again, _units, _packets, _damage, _numbering) in listed:
             selector.source = title  # (the evidence names the file it is in, as the decode cites it)
             try:
                 choose_profiles_first(annotate, args, chunks, mode, path, again,

@@ -65,6 +65,9 @@ class CaptureResult:
     rows: dict[str, int] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
     error: str | None = None  # one line: the capture could not be read
+    # One line: what damaged the capture after its first packets (sources/reader.py Source.defer_damage); its rows
+    # before the damage are written, then the run is refused (exit 2), as a decode shows the packets before it.
+    damage: str | None = None
     # A --map written in PLC references, as the traffic told it (devices/maps_refs.py): said once a run.
     map_warnings: list[str] = field(default_factory=list)
 
@@ -84,32 +87,58 @@ def group_captures(paths: list[str], ports: RtuPorts = RtuPorts()) -> list[Captu
 
 
 def _open(path: str, settings: JobSettings, interface: int | None) -> Any:
+    """A file's Source whose damage after its first packets ends its chunks, kept in its `damage` (not raised)."""
     if interface is None:
-        return open_source(path, settings.format, mode=settings.mode, ports=settings.ports)
-    return open_interface(path, interface, settings.mode, ports=settings.ports)
+        return open_source(path, settings.format, mode=settings.mode, ports=settings.ports).defer_damage()
+    return open_interface(path, interface, settings.mode, ports=settings.ports).defer_damage()
+
+
+def _files(files: tuple[str, ...], settings: JobSettings, interface: int | None,
+           damaged: list[SourceError] | None = None) -> Iterator[tuple[str, Any]]:
+    """(path, its Source, open) of each file of a capture, in order, until one damaged after the capture's first
+    packets (its damage appended to `damaged`): the files after it are not read, as a decode's ring
+    (app/rings.py RingSource.defer_damage). A file that cannot be opened after the first is damage too."""
+    for index, path in enumerate(files):
+        try:
+            source = _open(path, settings, interface)
+        except SourceError as error:
+            if not index or damaged is None:
+                raise
+            damaged.append(error)
+            return
+        try:
+            yield path, source
+        finally:
+            source.close()
+        if source.damage is not None:
+            if damaged is not None:
+                damaged.append(source.damage)
+            return
 
 
 def _chunks(files: tuple[str, ...], settings: JobSettings, tables: object, result: CaptureResult,
             interface: int | None = None, recorded: list[Any] | None = None) -> Iterator[object]:
-    """`recorded`: each file's Source.recorded_until, once read (the last says when the capture ends)."""
+    """`recorded`: each file's Source.recorded_until, once read (the last says when the capture ends); damage
+    after the capture's first packets ends it, said in result.damage."""
     offset = 0  # payload bytes of the files before: where each file starts in the capture's stream
-    for index, path in enumerate(files):
-        if index:
-            result.warnings.extend(missing_files(files[index - 1], path))  # (a ring's file missing: said)
-        source = _open(path, settings, interface)
-        try:
-            tables.files.append((offset, os.path.basename(path)))  # type: ignore[attr-defined]
-            for chunk in source:
-                offset += len(chunk.data)
-                yield chunk
-            warnings = source.take_warnings()
-            if settings.several:  # (a several-interface file's name its file already: pcapng.py)
-                warnings = [text if text.startswith(f"{path}: ") else f"{path}: {text}" for text in warnings]
-            result.warnings.extend(warnings)
-            if recorded is not None:
-                recorded.append(source.recorded_until)
-        finally:
-            source.close()
+    damaged: list[SourceError] = []
+    before: str | None = None
+    for path, source in _files(files, settings, interface, damaged):
+        if before is not None:
+            result.warnings.extend(missing_files(before, path))  # (a ring's file missing: said)
+        before = path
+        tables.files.append((offset, os.path.basename(path)))  # type: ignore[attr-defined]
+        for chunk in source:
+            offset += len(chunk.data)
+            yield chunk
+        warnings = source.take_warnings()
+        if settings.several:  # (a several-interface file's name its file already: pcapng.py)
+            warnings = [text if text.startswith(f"{path}: ") else f"{path}: {text}" for text in warnings]
+        result.warnings.extend(warnings)
+        if recorded is not None:
+            recorded.append(source.recorded_until)
+    if damaged:
+        result.damage = str(damaged[0])
 
 
 def _choose_profiles(annotate: object, files: tuple[str, ...], settings: JobSettings, mode: str, baud: int,
@@ -120,9 +149,8 @@ def _choose_profiles(annotate: object, files: tuple[str, ...], settings: JobSett
     from dissector.app.preselect import choose_profiles
 
     def chunks() -> Iterator[object]:
-        for path in files:
-            with _open(path, settings, interface) as source:
-                yield from source
+        for _path, source in _files(files, settings, interface, []):
+            yield from source
 
     choose_profiles(annotate, chunks(), mode, baud, settings.timeout)  # type: ignore[arg-type]
 
@@ -317,6 +345,9 @@ def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog:
             stderr.write(f"{prog}: {shown(result.error)}\n")  # type: ignore[attr-defined]
             return
         stdout.write(f"{shown(result.capture)}: {rows_text(result.rows)}\n")  # type: ignore[attr-defined]
+        if result.damage is not None:  # (its rows before the damage written: then refused, as a decode)
+            failed += 1
+            stderr.write(f"{prog}: {shown(result.damage)}\n")  # type: ignore[attr-defined]
 
     run_captures(captures, settings, args.jobs, args.scheduler, report)
     for warning in said:

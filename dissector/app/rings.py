@@ -10,6 +10,7 @@ import re
 from collections.abc import Callable, Iterator
 from typing import Any
 
+from dissector.errors import SourceError
 from dissector.model import Chunk
 from dissector.sources.common import name_text
 
@@ -93,6 +94,9 @@ class RingSource:
         self._units = self.current.time_units
         self.streaming = False
         self._warnings: list[str] = []
+        self._defer = False  # (defer_damage)
+        self._packets_before = 0  # the records of the files before the current one (packet_number)
+        self._damage: SourceError | None = None  # a file the ring could not open, after the files before it
 
     @property
     def recorded_until(self) -> Any:
@@ -100,9 +104,46 @@ class RingSource:
         return self.current.recorded_until
 
     @property
+    def packet_number(self) -> int | None:
+        """The record number of the chunk given last, counted on from the files before (as in their mergecap -a,
+        tshark's frame.number); None: not a pcap or pcapng."""
+        number = getattr(self.current, "packet_number", None)
+        return None if number is None else self._packets_before + number
+
+    @property
+    def packets_before(self) -> int:
+        """The records of the files before the current one (its numbers go on from them)."""
+        return self._packets_before
+
+    def number_of(self, chunk: Chunk) -> int | None:
+        """The record number of `chunk`, the next given (sources/reader.py Source.number_of), counted on."""
+        number = self.current.number_of(chunk) if hasattr(self.current, "number_of") else None
+        return None if number is None else self._packets_before + number
+
+    @property
     def time_units(self) -> Any:
         """The first file's (dumpcap writes every file of a ring alike)."""
         return self._units
+
+    def defer_damage(self) -> RingSource:
+        """Damage in a file after the capture's first packets (a pcapng's corrupt block; a file that cannot be read
+        at all, after the files before it) ends the capture there, kept in `damage` rather than raised: the decode
+        shows the packets before it, then refuses the capture in one line (app/cli.py), as a single file's
+        (sources/reader.py Source.defer_damage); the files after it are not read. Before, the ring was refused
+        with nothing shown. Damage before the capture's first packet (in its first file) is raised as before."""
+        self._defer = True
+        self._defer_file(self.current)
+        return self
+
+    def _defer_file(self, source: Any) -> None:
+        defer = getattr(source, "defer_damage", None) if self._defer else None
+        if defer is not None:
+            defer()
+
+    @property
+    def damage(self) -> SourceError | None:
+        """Once read: what damaged the capture after its first packets (None: nothing)."""
+        return self._damage or getattr(self.current, "damage", None)
 
     def take_warnings(self) -> list[str]:
         taken, self._warnings = self._warnings + self.current.take_warnings(), []
@@ -118,9 +159,21 @@ class RingSource:
         try:
             yield self.current
             for before, path in zip(self.files, self.files[1:]):
+                if self.damage is not None:  # (deferred: the capture ends at the damage)
+                    return
                 self._warnings += self.current.take_warnings()  # (a file's own, said as the next begins)
                 self._warnings += missing_files(before, path)
-                self.current = self._open(path)
+                try:
+                    opened = self._open(path)
+                except SourceError as error:
+                    if not self._defer:
+                        raise
+                    self._damage = error
+                    return
+                self._packets_before += getattr(self.current, "packet_total", 0) or 0
+                self.current.close()
+                self.current = opened
+                self._defer_file(opened)
                 yield self.current
         finally:
             self.close()

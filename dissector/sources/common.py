@@ -219,7 +219,7 @@ def rtac_header(head: bytes, record: int, log: WarningLog) -> tuple[Stamp | None
         log.warn(
             "records shorter than the RTAC header",
             f"record {record}: {len(head)} bytes, shorter than the 12-byte RTAC serial header; "
-            "its bytes are not decoded",
+            "its bytes are noise",
         )
         return None
     seconds, micros, event, _lines, _footer = RTAC_HEADER.unpack_from(head)
@@ -242,6 +242,16 @@ class NotedChunk(Chunk):
 
     record: int = 0
     comments: tuple[str, ...] = ()
+
+
+@dataclass(slots=True)
+class StoredChunk(Chunk):
+    """Bytes decoded untimed though their record has a time: an RTAC record's whose header microseconds are
+    corrupt (rtac_header; its record's clock may not be its header's, so no response time is made of it).
+    `stored`, its record's time, is tshark's frame time for it: -w writes the record there (sources/trail.py),
+    as it writes such a record of no serial byte. Before, at the epoch: tshark showed the copy's packet in 1970."""
+
+    stored: Stamp | None = None
 
 
 @dataclass(slots=True)
@@ -305,6 +315,11 @@ def record_chunks(
             header = rtac_header(piece, record, log)
             if header is None:
                 inp.skip(remaining)
+                if piece:  # (a frame tshark shows undissected: its bytes are noise, at its record's time)
+                    if stamped is not None and stored is not None:
+                        stamped(stored)
+                    yield Chunk(piece, stored, not cut)
+                    return
                 break  # (a packet all the same, tshark's frame at its record's time: below)
             stored, (time, size) = time, header
             piece = piece[size:]
@@ -316,6 +331,8 @@ def record_chunks(
             part += piece
             if cut and part:  # (the input ends inside it: its bytes as any record's there, no cut)
                 yield Chunk(bytes(part), time, False)
+        elif piece and time is None and stored is not None and linktype == LINKTYPE_RTAC_SERIAL:
+            yield StoredChunk(piece, None, remaining == 0 and not cut, stored)  # type: ignore[arg-type]
         elif piece:
             yield Chunk(piece, time, remaining == 0 and not cut)
         if cut:

@@ -77,6 +77,7 @@ class PcapRecords:
         self.order, self.units, self.linktype, self.snaplen = "<", 1_000_000, 0, 0
         self.extra = 0  # record header bytes after the standard 16 (modified pcap)
         self.recorded_until: Stamp | None = None
+        self.numbered = 0  # the record whose chunks are given (the first, held at the epoch, after the second is read)
         self.rtac_times: PacketTimes | None = None  # an RTAC link's packet marks (_stamped)
         self._packet: int | None = None  # the time of the packet before the RTAC record read (ns)
         self._header()  # (at once: its time units set the time column's decimals before any record)
@@ -99,6 +100,17 @@ class PcapRecords:
     def packet_times(self) -> PacketTimes | None:
         """A network link's packet times (sources/ethernet.py), the time column's references."""
         return self.rtac_times if self.transport is None else self.transport.times
+
+    @property
+    def packet_number(self) -> int:
+        """The record number (tshark's frame.number) of the record whose chunks are being given (-T fields'
+        `record`: sources/trail.py)."""
+        return self.numbered
+
+    @property
+    def packet_total(self) -> int:
+        """The records read (all of them, once read)."""
+        return self.record
 
     @property
     def time_units(self) -> int:
@@ -171,6 +183,7 @@ class PcapRecords:
         while True:
             head = inp.read(record_header.size)
             if not head:
+                self.numbered = 1 if held.chunks is not None else self.numbered
                 yield from held.release(False)
                 if self.transport is not None and self.record:
                     self.transport.finish(log.warn)
@@ -179,6 +192,7 @@ class PcapRecords:
                 return
             self.record += 1
             if len(head) < record_header.size:
+                self.numbered = 1
                 yield from held.release(False)
                 log.warn(
                     "truncated input",
@@ -202,7 +216,8 @@ class PcapRecords:
                     f"({self.snaplen}): a damaged file?",
                 )
             time = None if corrupt else Stamp.from_parts(seconds, fraction, self.units)
-            if self.transport is not None:  # (a network link: the RTU ports' payloads alone, as records)
+            if self.transport is not None:
+                self.numbered = self.record  # (a network link: the RTU ports' payloads alone, as records)
                 for chunk in record_chunks(inp, captured, time, self.linktype, self.record, self.payload_log,
                                            self.chunk_size, original=original, transport=self.transport):
                     self.recorded_until = time if time is not None else self.recorded_until
@@ -219,8 +234,10 @@ class PcapRecords:
                 continue
             if held.chunks is not None:
                 self.holding = True
+                self.numbered = 1
                 yield from held.release(within_day_zero(epoch, seconds) and not corrupt)
                 self.holding = False
+            self.numbered = self.record
             if epoch and self.linktype != LINKTYPE_RTAC_SERIAL:
                 # (-w's untimed record: see EpochRecord; an RTAC record carries its own time)
                 chunks = record_chunks(inp, captured, None, self.linktype, self.record, log, self.chunk_size,

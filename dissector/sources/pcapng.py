@@ -90,6 +90,9 @@ class _Reader:
         self.order = "<"
         self.interfaces: list[Interface] = []
         self.record = 0
+        # Packet blocks met, every interface's (tshark's frame.number of the last), and the number of the packet whose
+        # chunks are given (its first, held at the epoch, after the second is read): -T fields' `record` (trail.py).
+        self.packets = self.numbered = self.held_number = 0
         self.used_interfaces: set[int] = set()
         self.held = EpochRecord(chunk_size)  # the first packet, at the epoch, until the next says (pcap.py)
         # The time of the last timed packet read, any interface's, empty or not: the tap was recording then
@@ -135,7 +138,8 @@ class _Reader:
                 self.ordinals.append(section_ordinal(self.interfaces[-1], self.described, self.ordinals))
                 if self.first_interface and serial(self.interfaces[-1].linktype):
                     return
-            elif block_type in (EPB, OPB, SPB) and self._jump(start):
+            elif block_type in (EPB, OPB, SPB) and self._counted() and self._jump(start):
+                self.packets = self.record  # (the span's first packet is counted as it is read)
                 continue
             elif block_type in (EPB, OPB, SPB) and self._passed_over():
                 if inp.skip(body_length) < body_length:
@@ -156,6 +160,11 @@ class _Reader:
                     return
             if not self._trailer(total, start):
                 return
+
+    def _counted(self) -> bool:
+        """A packet block is met: counted (self.packets). True."""
+        self.packets += 1
+        return True
 
     def _jump(self, start: int) -> bool:
         """Go straight to the span of the one connection read from a packet block before it (its offset: the
@@ -293,10 +302,13 @@ class _Reader:
             raise SourceError(f"{inp.name}: packet block at byte {start}: {outside}")
         if not epoch and interface.linktype != LINKTYPE_RTAC_SERIAL and interface.linktype not in NETWORK_LINKTYPES:
             self.last_time = time  # (an RTAC record's time is in its bytes; a network packet's if it is the bus's)
+        self.numbered = self.held_number
         yield from self.held.release(within_day_zero(epoch, seconds))
+        self.numbered = self.packets
         chunks = self._data(captured, original, time, interface, body_length - 20, start)
         if (epoch and self.record == 0 and interface.linktype != LINKTYPE_RTAC_SERIAL
                 and self.held.hold(captured, chunks)):
+            self.held_number = self.packets
             return
         if epoch:
             # vw3-decode -w writes records at the epoch when its input had no times: untimed (pcap.py
@@ -349,7 +361,9 @@ class _Reader:
         if interface.snaplen:
             captured = min(captured, interface.snaplen)
         # A simple packet block has no timestamp.
+        self.numbered = self.held_number
         yield from self.held.release(False)
+        self.numbered = self.packets
         yield from self._data(captured, original, None, interface, body_length - 4, start, options=False)
 
     def _data(
@@ -502,6 +516,16 @@ class PcapngChunks:
         return self._reader.last_time
 
     @property
+    def packet_number(self) -> int:
+        """The file's packet number (tshark's frame.number) of the record whose chunks are being given."""
+        return self._reader.numbered
+
+    @property
+    def packet_total(self) -> int:
+        """The packet blocks read (all of them, once read)."""
+        return self._reader.packets
+
+    @property
     def transport(self) -> Transport | None:
         """Its network interfaces' reading (sources/ethernet.py), once one's packet is read; else None."""
         return self._reader.transport if self._reader.networked else None
@@ -542,6 +566,8 @@ class PcapngChunks:
             # (damage after packets: the chunks end, the Source raises it after them, or the decode once it has
             # shown them, as tshark shows them: reader.py Source.defer_damage; before, nothing was shown)
             self.damage = error
+        if self._reader.held.chunks is not None:
+            self._reader.numbered = self._reader.held_number
         yield from self._reader.held.release(False)
         reader = self._reader
         if reader.networked:

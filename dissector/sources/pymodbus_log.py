@@ -32,6 +32,8 @@ import re
 from collections.abc import Iterator
 
 from dissector.model import Chunk, Stamp
+from dissector.protocol import table
+from dissector.protocol.crc import crc_bytes
 from dissector.sources.common import Input, SourceError, WarningLog
 from dissector.sources.hexdump import Days, HexLineError, StampedLines, _timestamp, cut_short, ended_lines
 
@@ -116,6 +118,8 @@ def _chunks(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
             if run:
                 yield from mirror.run(run, sent)
                 run, sent = [], bytearray()
+            if data and not sent:
+                yield from mirror.sending(data)
             if data:
                 sent += data
                 yield from mirror.give([chunk])
@@ -150,6 +154,9 @@ class _Mirror:
         self.kinds: set[str] = set()  # what read-backs were decoded as
         self.held: list[tuple[list[Chunk], bool]] = []  # (chunks, a read-back's) in order
         self.candidates = 0
+        self.backs: list[bytes] = []  # the read-backs' bytes while it is not known (_one_end)
+        self.phases = {0, 1}  # where a log of both ends of echoes only could pair its read-backs (_one_end)
+        self.decoded: set[str] = set()  # what the last read-back was decoded as
 
     def run(self, run: list[Chunk], sent: bytearray) -> Iterator[Chunk]:
         """A recv run, a frame ending after its last chunk (the program turns to sending, or the log ends)."""
@@ -163,11 +170,37 @@ class _Mirror:
             self.kinds |= ends
             self.held.append((chunks, True))
             self.candidates += 1
-            if len(self.kinds) == 2 or (not self.kinds and len(self.startup) == 2):  # (no decode line: the ends' own)
-                self.mirrored = True
+            if len(self.kinds) == 2 or (not self.kinds and len(self.startup) == 2) or _sent_by_a_server(sent):
+                self.mirrored = True  # (no decode line: the ends' own lines, or the bytes read back)
+            elif self._one_end(bytes(sent), ends):
+                self.mirrored = False
             yield from self.give([])
         elif not self.mirrored:
             yield from self.give(chunks)
+
+    def _one_end(self, data: bytes, ends: set[str]) -> bool:
+        """Do the read-backs so far (the last `data`, decoded as `ends`) say the log is one end's, whose echoes
+        (an FC5/FC6/FC8 answer repeats its request) read back its sends? Both ends of echoes send and read back
+        each frame twice, the request and its echo: in pairs of equal bytes, decoded as a request then a response.
+        Two read-backs in a row decoded alike, or no pairing left (`A B C`: neither A=B nor B=C: sending), are one
+        end's: it is known at its second reply or third send, not held up to HELD_RUNS (late through a live pipe:
+        tail -f log | vw3-decode -)."""
+        decoded, self.decoded = self.decoded, ends
+        backs = self.backs
+        backs.append(data)
+        if len(backs) > 1 and backs[-1] != backs[-2]:
+            self.phases.discard(len(backs) % 2)  # (the pair of the two last cannot be one frame's)
+        return not self.phases or (len(ends) == 1 and ends == decoded)
+
+    def sending(self, data: bytes) -> Iterator[Chunk]:
+        """The first send after a read-back run, `data`: the next read-back's first bytes. Not the bytes read back
+        last, it pairs with none of them (_one_end); what is held once that tells."""
+        backs = self.backs
+        if self.mirrored is None and backs and len(backs) == self.candidates and not backs[-1].startswith(data):
+            self.phases.discard((len(backs) + 1) % 2)
+            if not self.phases:
+                self.mirrored = False
+                yield from self.give([])
 
     def give(self, chunks: list[Chunk], end: bool = False) -> Iterator[Chunk]:
         """`chunks` when nothing is held, else after what is held; what is held once it is known (or at the end)."""
@@ -182,6 +215,22 @@ class _Mirror:
                 yield from held
         self.held.clear()
         yield from chunks
+
+
+def _sent_by_a_server(data: bytearray) -> bool:
+    """Are the bytes read back, sent since the run before, an RTU frame (its CRC good) no answer repeats whole: an
+    exception, or a function whose answer does not repeat its request (a read: protocol/table.py `echo`) or not
+    whole (FC15/FC16 answer 8 bytes of a longer request)? A one-end log reads back only its requests' echoes:
+    these were read by the other end of the link, in the same log (a log of both ends without decode lines nor
+    the ends' own lines showed each frame twice)."""
+    if len(data) < 4 or crc_bytes(bytes(data[:-2])) != data[-2:]:
+        return False
+    if data[1] & 0x80:
+        return True
+    entry = table.TABLE.get(data[1])
+    if entry is None:
+        return False
+    return not entry.echo or entry.request.length != entry.response.length
 
 
 def _ends(line: str, ends: set[str]) -> None:

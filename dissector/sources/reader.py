@@ -232,6 +232,8 @@ class Source:
         self._closer = closer
         self._taken = 0
         self._defer = False
+        # (chunk, record number) of the chunks read ahead, in order (number_of)
+        self._numbered: list[tuple[Chunk, int | None]] = list(zip(head, getattr(head, "numbers", ())))
         # Not a regular file (standard input, a pipe, a FIFO): bytes come as they are written, and a
         # reader must not wait for more than what is there before it shows what it has.
         self.streaming = True
@@ -264,6 +266,25 @@ class Source:
         return getattr(self._chunks, "recorded_until", None)
 
     @property
+    def packet_number(self) -> int | None:
+        """A pcap's or pcapng's: the record number (tshark's frame.number) of the chunk given last; None for others."""
+        return getattr(self._chunks, "packet_number", None)
+
+    def number_of(self, chunk: Chunk) -> int | None:
+        """The record number (tshark's frame.number) of `chunk`, the next given (read ahead, or the last read)."""
+        numbered = self._numbered
+        if numbered:
+            if numbered[0][0] is chunk:
+                return numbered.pop(0)[1]
+            numbered.clear()  # (not taken in order: no longer known)
+        return self.packet_number
+
+    @property
+    def packet_total(self) -> int | None:
+        """Once read, a pcap's or pcapng's records (a ring's next file numbers on from them); None for others."""
+        return getattr(self._chunks, "packet_total", None)
+
+    @property
     def packet_times(self) -> object:
         """A network capture's packet times (sources/ethernet.py PacketTimes); None for others."""
         return getattr(self._chunks, "packet_times", None)
@@ -276,7 +297,11 @@ class Source:
         interfaces are described before it. (Asked before its chunks are read.)"""
         units = getattr(self._chunks, "time_units", None)
         if units is None and self.format == "pcapng" and not self._head:
-            self._head = list(islice(self._chunks, 1))
+            self._head = HeadChunks()
+            for chunk in islice(self._chunks, 1):
+                self._head.append(chunk)
+                self._head.numbers.append(self.packet_number)
+            self._numbered = list(zip(self._head, self._head.numbers))
             units = getattr(self._chunks, "time_units", None)
         return units
 
@@ -347,16 +372,28 @@ def open_source(
 def sampled_mode(chunks: Iterator[Chunk]) -> tuple[str, list[Chunk]]:
     """The mode the first payload bytes decide (protocol/ascii.py sample_mode: MODE_SAMPLE bytes, more
     where they are line noise), and the chunks read for that (replayed first). Each chunk is judged as it
-    comes: a stream is decoded as soon as its bytes tell."""
-    head: list[Chunk] = []
+    comes: a stream is decoded as soon as its bytes tell. A pcap's or pcapng's chunks read are HeadChunks: their
+    record numbers kept (Source.number_of)."""
+    numbered = getattr(chunks, "packet_number", None) is not None
+    head: list[Chunk] = HeadChunks() if numbered else []
     sample = b""
     for chunk in chunks:
         head.append(chunk)
+        if numbered:
+            head.numbers.append(chunks.packet_number)  # type: ignore[attr-defined]
         sample += chunk.data[: MODE_REACH - len(sample)]
         mode = sample_mode(sample, False)  # (never None once MODE_REACH bytes have come)
         if mode is not None:
             return mode, head
     return sample_mode(sample, True), head
+
+
+class HeadChunks(list):  # type: ignore[type-arg]
+    """Chunks read ahead (sampled_mode) with the record number of each (sources/trail.py: -T fields' `record`)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.numbers: list[int | None] = []
 
 
 def _start(

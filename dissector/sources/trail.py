@@ -23,11 +23,11 @@ from __future__ import annotations
 
 import re
 from collections import deque
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from typing import Any
 
 from dissector.model import Chunk, Item, Stamp
-from dissector.sources.common import NotedChunk
+from dissector.sources.common import NotedChunk, StoredChunk
 
 # The comments vw3-decode writes on the records of a -w copy (render/capturefile.py noise_comment,
 # CaptureOutput.write_items and release, joined by "; "): its decode's own words, which every decode of
@@ -57,12 +57,20 @@ class RecordTrail:
     """The trail of one decode's stream (a ring buffer's files are one): `observe` its chunks, then ask
     `pieces` of each item, in order. `times`: keep where the time changes (-w)."""
 
-    def __init__(self, times: bool) -> None:
+    def __init__(self, times: bool, numbering: Callable[[Chunk], int | None] | None = None) -> None:
         self.times = times
+        # The record number (tshark's frame.number) of the chunk observed (sources/reader.py Source.packet_number):
+        # where each record with bytes begins, (stream offset, number), for record_of (-T fields' `record`).
+        self.numbering = numbering
+        self._numbers: deque[tuple[int, int | None]] = deque()
+        self.number_base = 0  # the records of a ring's files before the one read in bulk (accel/records.py)
         self.offset = 0  # bytes observed: the next chunk's offset, as the framers count
         self._parts: deque[tuple[int, Any]] = deque()  # (first byte, time) of each chunk (-w)
         self._commented: deque[tuple[int, int, tuple[str, ...]]] = deque()  # (first byte, end, comments)
         self._empty: deque[tuple[int, Any, tuple[str, ...]]] = deque()  # (offset, time, comments): -w's empty records
+        # (first byte, end, record's time) of each chunk decoded untimed whose record has a time (common.py
+        # StoredChunk): -w writes the items there rather than at the epoch
+        self._stored: deque[tuple[int, int, Any]] = deque()
         self.comments = 0  # comments read
         self.name: str | None = None  # the file being read, of a ring buffer's (None: the input's one)
         # (file, record, comments) of each record carrying comments
@@ -71,15 +79,21 @@ class RecordTrail:
     def observe(self, chunks: Iterable[Chunk]) -> Iterator[Chunk]:
         times, parts = self.times, self._parts
         offset = start = self.offset  # (the record being read starts at `start`)
+        numbering = self.numbering
         for chunk in chunks:
+            number = numbering(chunk) if numbering is not None else None  # (every chunk's, in order: Source.number_of)
             if not chunk.data and type(chunk) in (Chunk, NotedChunk):  # (an empty record: common.py record_chunks)
                 if times:
                     self._empty.append((offset, chunk.time, getattr(chunk, "comments", ())))
                 start = offset
                 yield chunk
                 continue
+            if numbering is not None and offset == start:  # (a record's first bytes)
+                self._numbers.append((offset, number))
             if times:
                 parts.append((offset, chunk.time))
+                if type(chunk) is StoredChunk and chunk.stored is not None:
+                    self._stored.append((offset, offset + len(chunk.data), chunk.stored))
             offset += len(chunk.data)
             if isinstance(chunk, NotedChunk) and chunk.comments:  # (a PartChunk is one, with comments or none)
                 self._commented.append((start, offset, chunk.comments))
@@ -91,14 +105,27 @@ class RecordTrail:
             yield chunk
 
     def observe_reads(self, starts: Sequence[int], times: list[int | None] | None, end: int,
-                      empty: Sequence[tuple[int, int | None]] = ()) -> None:
+                      empty: Sequence[tuple[int, int | None]] = (), numbers: Sequence[int] = ()) -> None:
         """Reads taken in bulk, which carry no comments (a pcap's records, accel/records.py observe_block),
         as `observe` takes them: where each begins, its time in integer ns (-w), the end of the last; `empty`:
-        the empty records among them, (offset, time in ns or None)."""
+        the empty records among them, (offset, time in ns or None); `numbers`: each read's record number (when
+        numbering)."""
+        if self.numbering is not None:
+            self._numbers.extend(zip(starts, numbers))
         if self.times and times is not None:
             self._parts.extend(zip(starts, times))
             self._empty.extend((offset, None if ns is None else Stamp(ns), ()) for offset, ns in empty)
         self.offset = end
+
+    def record_of(self, item: Item) -> int | None:
+        """The record number (tshark's frame.number) of the record holding the item's last byte, where Wireshark
+        shows it (the plugin shows a frame split over records in the record that completes it, and its
+        request_frame and response_frame name that one); None where the input numbers no record. Asked of the
+        items in order: what lies before is forgotten."""
+        numbers, last = self._numbers, item.offset + max(len(item.raw), 1) - 1
+        while len(numbers) > 1 and numbers[1][0] <= last:
+            numbers.popleft()
+        return numbers[0][1] if numbers and numbers[0][0] <= last else None
 
     @property
     def idle(self) -> bool:
@@ -115,7 +142,8 @@ class RecordTrail:
             while len(parts) > 1 and parts[1][0] <= start:
                 parts.popleft()
             if not commented and (len(parts) < 2 or parts[1][0] >= start + len(item.raw)) \
-                    and not _inside(item, parts) and not (self._empty and self._empty[0][0] <= start + len(item.raw)):
+                    and not _inside(item, parts) and not (self._empty and self._empty[0][0] <= start + len(item.raw)) \
+                    and not (self._stored and self._stored[0][0] < start + len(item.raw)):
                 continue
             pieces = self.pieces(item)
             if pieces is not None:
@@ -135,7 +163,7 @@ class RecordTrail:
     def pieces(self, item: Item) -> list[Piece] | None:
         """The item's pieces, the first at the item's time; None for one piece without comments. An empty
         record read after one of its bytes (before its first: the input's first) is a piece of no byte there."""
-        found = self._pieces(item)
+        found = self._stored_times(item, self._pieces(item))
         empty = self._empty
         end = item.offset + len(item.raw)
         if not empty or empty[0][0] > end:
@@ -156,6 +184,21 @@ class RecordTrail:
                 index += 1
             split.insert(index, (at, time, comments, max(offset, item.offset)))
         return split
+
+    def _stored_times(self, item: Item, found: list[Piece] | None) -> list[Piece] | None:
+        """`found` with each untimed piece that begins in a chunk of a StoredChunk at that chunk's record time."""
+        stored, start = self._stored, item.offset
+        while stored and stored[0][1] <= start:
+            stored.popleft()
+        if not stored or stored[0][0] >= start + len(item.raw):
+            return found
+        pieces = found or [(item.length, item.time, (), item.offset)]
+        timed = []
+        for index, (end, time, comments, first) in enumerate(pieces):
+            begin = start + (pieces[index - 1][0] if index else 0)
+            record = next((at for low, high, at in stored if low <= begin < high), None)
+            timed.append((end, record if time is None and record is not None else time, comments, first))
+        return timed
 
     def _pieces(self, item: Item) -> list[Piece] | None:
         start = item.offset

@@ -2,7 +2,7 @@
 described, a packet longer than its block) shows the packets before the damage, then refuses the file in one line,
 exit 2, as tshark shows them before its `appears to be damaged or corrupt` (exit 2); a -w copy keeps them. Before,
 nothing was shown: the whole decode was refused. Damage before any packet is refused at once, as before; --parquet
-refuses the capture as before. Engine and VW3_PURE_PYTHON=1, -n and profile auto."""
+refuses the capture too, after writing its rows before the damage (test_damage_in_rings_and_parquet.py). Engine and VW3_PURE_PYTHON=1, -n and profile auto."""
 from __future__ import annotations
 
 import struct

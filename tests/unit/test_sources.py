@@ -163,12 +163,12 @@ def test_rtac_trouble_events_and_short_records_are_reported(tmp_path: Path) -> N
     records = [(T0, 0, rtac(T0, 0, REQUEST, event=0x05)), (T0, 1, b"\0" * 7),
                (T0, 2, rtac(T0, 5, RESPONSE, event=0x08))]
     source = open_source(write(tmp_path, "c", pcap(records, linktype=250)))
-    # (the short record a packet of no byte at its record's time, as tshark shows it: -w keeps it)
-    assert list(source) == [Chunk(REQUEST, float(T0), True), Chunk(b"", T0 + 1e-6, True),
+    # (the short record's bytes, noise at its record's time, as tshark shows it a frame undissected: -w keeps it)
+    assert list(source) == [Chunk(REQUEST, float(T0), True), Chunk(b"\0" * 7, T0 + 1e-6, True),
                             Chunk(RESPONSE, T0 + 5e-6, True)]
     assert source.warnings == [
         "record 1: the RTAC reports a capture data lost (event 0x05)",
-        "record 2: 7 bytes, shorter than the 12-byte RTAC serial header; its bytes are not decoded",
+        "record 2: 7 bytes, shorter than the 12-byte RTAC serial header; its bytes are noise",
         "record 3: the RTAC reports a parity error (event 0x08)",
     ]
 
