@@ -51,7 +51,7 @@ ALIASES: dict[str, str] = {"exception": "exception_code"}
 FOREIGN_NAMES: dict[str, str] = {
     entry["filter"]: entry["key"] for entry in CATALOGUE if "key" in entry and "filter" in entry
 } | {
-    "frame.number": "frame", "frame.time_epoch": "time", "frame.time": "time", "frame.len": "length",
+    "frame.number": "record", "frame.time_epoch": "time", "frame.time": "time", "frame.len": "length",
     "frame.cap_len": "length", "frame.comment": "comment", "mbrtu.unit_id": "slave", "mbrtu.crc16": "crc",
     "modbus.func_code": "function", "modbus.exception_code": "exception_code", "modbus.request_frame": "request_frame",
     "modbus.response_time": "response_time", "modbus.reference_num": "start", "modbus.word_cnt": "quantity",

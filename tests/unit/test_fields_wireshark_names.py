@@ -13,7 +13,7 @@ CAPTURE = str(ROOT / "captures" / "p38_protection.pcap")
 
 
 @pytest.mark.parametrize("name, ours", [
-    ("frame.number", "frame"), ("frame.time_relative", "time_relative"), ("frame.time_delta", "time_delta"),
+    ("frame.number", "record"), ("frame.time_relative", "time_relative"), ("frame.time_delta", "time_delta"),
     ("frame.time_delta_displayed", "time_delta_displayed"), ("frame.time_epoch", "time"),
     ("frame.len", "length"), ("vw3.slave", "slave"), ("vw3.reg.code", "code"),
     ("vw3.byte_count", "fields.byte_count"), ("mbrtu.unit_id", "slave"), ("modbus.func_code", "function"),
