@@ -278,4 +278,5 @@ class AsciiFramer(Awaiting, StreamFramer):
     def _reject(self, raw: bytes, i: int, reason: str, items: list[Item]) -> None:
         self._flush_noise(items)
         offset = self._base + i
-        items.append(Noise(offset=offset, raw=raw, time=self._time_at(offset), reason=reason))
+        items.append(Noise(offset=offset, raw=raw, time=self._time_at(offset), reason=reason,
+                           tail=self._tail_at(offset + len(raw), offset)))

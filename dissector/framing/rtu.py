@@ -522,6 +522,7 @@ class RtuFramer(RecordEnds, Bounded, Awaiting, StreamFramer):
                                 function & 0x7F,
                                 crc,
                                 crc,
+                                tail=self._tail_at(offset + length, offset) if self._timed else None,
                             )
                         )
                         # (awaits_answer: not a broadcast, not a request the spec has no server answer)
