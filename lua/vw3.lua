@@ -5845,7 +5845,8 @@ local function cut_answer(s, b, i, n, silence)
     if scan_match(s, b, i, n, length, true) ~= NONE then return nil end
     length = declared
   end
-  if length ~= NEED and not (n - i < length and length <= MAX_ADU) then return nil end
+  -- (a length rule's reach goes over MAX_ADU too, as match takes such a frame whole; a scan's stops there)
+  if length ~= NEED and not (n - i < length and length <= (is_scan and MAX_ADU or MAX_COUNTED)) then return nil end
   if intact_inside(s, b, i, n - i, n, true) then return nil end
   return cut_reason(kind, n - i, length, silence)
 end
@@ -6034,7 +6035,7 @@ local function cut_request(s, b, i, n, silence)
   local slave, code = b[i], b[i + 1]
   if not ((slave >= 1 and slave <= MAX_SLAVE) or (slave == 0 and not DATA.not_broadcast[code])) then return nil end
   local length, is_scan = reading_of(s, b, i, n, REQUEST)
-  if length == nil or is_scan or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then return nil end
+  if length == nil or is_scan or (length ~= NEED and not (n - i < length and length <= MAX_COUNTED)) then return nil end
   if checks_out(s, b, i, n) or intact_inside(s, b, i, n - i, n, true) then return nil end
   return cut_reason(REQUEST, n - i, length, silence)
 end
@@ -6451,19 +6452,19 @@ local function ascii_cut_answer(s, b, i, n)
   -- The answer's reading, unless it is not as long as the request implies: then the next, the next request.
   local bin = hex_pairs(b, i + 1, count)
   if not awaited(s, bin, 0, count) then return nil end
-  local list, kind, length = interpretations(s, bin[0], bin[1], bin, 0, count), nil, nil
+  local list, kind, length, longest = interpretations(s, bin[0], bin[1], bin, 0, count), nil, nil, MAX_COUNTED
   for index = 1, #list do
     local found, is_scan, declared = list[index][2](bin, 0, count) -- (the RTU frame's: its CRC an LRC here)
     if is_scan then found = declared ~= nil and declared > 0 and declared or NEED end
     if not not_the_answer(s, list[index][1], found) then
-      kind, length = list[index][1], found
+      kind, length, longest = list[index][1], found, is_scan and MAX_ADU or MAX_COUNTED -- (long_line's reach)
       break
     end
   end
   if kind == nil then return nil end
   if length == NEED then return cut_reason(kind, n - i, NEED) end
   local characters = 1 + 2 * (length - 1) + 2 -- ':', the hex pairs of the ADU and the LRC, CR LF
-  if n - i < characters and length <= MAX_ADU then return cut_reason(kind, n - i, characters) end
+  if n - i < characters and length <= longest then return cut_reason(kind, n - i, characters) end
   return nil
 end
 
