@@ -392,9 +392,13 @@ def sent_in(item: Item, char_time: float) -> float:
     dump line, a read's bytes timed alike) that holds it, plus that byte's place in the run (`tail`: the run's
     time and its characters up to the item's end; a run that starts before the item counts from its own start, as
     its stamp is its first byte's).
-    Never less than its characters' time: stamps saying the last byte came sooner (an adapter stamping its reads
-    late, a faster line than assumed) cannot make the line carry the item faster than its speed; the overlap
-    warning (bustiming.py) is what says that the speed is wrong. The engine's twin: _bus.h sent_in."""
+    Never less than its characters' time: stamps saying the last byte came sooner than that (a capturing
+    clock's jitter between records, a line faster than the speed assumed) cannot make the
+    line carry the item faster than its speed, and an item ends no earlier than it did before tails were kept;
+    the overlap warning (bustiming.py) is what says that the speed is wrong. Time going backwards inside an item
+    likewise leaves its characters' time; a stamp far later inside it (a clock step) ends it there, as the stamps
+    say. The engine's twin: _summary.c frame_sent (bus_add takes the result: _bus.h); the plugin's: stream.lua
+    sent_in."""
     sent = item.length * char_time
     tail, time = item.tail, item.time
     if tail is not None and time is not None:
