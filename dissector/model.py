@@ -52,6 +52,11 @@ def stamped_before(time: float, than: float) -> bool:
     return time < than or time == than and time - than < 0
 
 
+# (the time of the run of bytes with one time that holds an item's last byte, the characters from that run's first
+# byte to the item's end): sent_in.
+Tail = tuple[float, int]
+
+
 class Kind(StrEnum):
     REQUEST = "request"
     RESPONSE = "response"
@@ -278,6 +283,7 @@ class Frame:
     unanswered: bool = False
     broadcast: bool = False
     warnings: list[str] = field(default_factory=list)
+    tail: Tail | None = None  # where its last byte was heard, when not in its first byte's run (sent_in)
     # Filled by dissector.decode.fields.decode_frame.
     decoded: bool = False
     fields: Any = None
@@ -366,6 +372,7 @@ class Noise:
     kind: Kind = Kind.NOISE
     warnings: list[str] = field(default_factory=list)
     part: CapturedPart | None = None  # a record captured in part, not line noise
+    tail: Tail | None = None  # as Frame.tail
 
     @property
     def length(self) -> int:
@@ -373,6 +380,32 @@ class Noise:
 
 
 Item = Frame | Noise
+
+
+def sent_in(item: Item, char_time: float) -> float:
+    """Seconds from the item's first byte's time until its last byte has been sent: a request's response
+    timeout starts then (pairing.py), and a gap or a turnaround after it (render/bustiming.py).
+
+    Its characters' time at the line's speed, `length x char_time`, unless its last byte came later than that
+    allows: a frame with silences inside it (a slow line's bytes coming a few characters apart, an adapter's
+    reads) ends when its last byte does: at the time of the run of bytes with one time (a chunk: a record, a
+    dump line, a read's bytes timed alike) that holds it, plus that byte's place in the run (`tail`: the run's
+    time and its characters up to the item's end; a run that starts before the item counts from its own start, as
+    its stamp is its first byte's).
+    Never less than its characters' time: stamps saying the last byte came sooner than that (a capturing
+    clock's jitter between records, a line faster than the speed assumed) cannot make the
+    line carry the item faster than its speed, and an item ends no earlier than it did before tails were kept;
+    the overlap warning (bustiming.py) is what says that the speed is wrong. Time going backwards inside an item
+    likewise leaves its characters' time; a stamp far later inside it (a clock step) ends it there, as the stamps
+    say. The engine's twin: _summary.c frame_sent (bus_add takes the result: _bus.h); the plugin's: stream.lua
+    sent_in."""
+    sent = item.length * char_time
+    tail, time = item.tail, item.time
+    if tail is not None and time is not None:
+        last = (tail[0] - time) + tail[1] * char_time  # (two Stamps subtract exactly)
+        if last > sent:
+            return last
+    return sent
 
 
 def up_to_items(items: list[Item], room: int) -> tuple[list[Item], int]:

@@ -5231,15 +5231,34 @@ function lane.line_speed(baud)
 end
 lane.line_speed(TIMING.default_baud)
 
--- Seconds a frame's characters take on the line at its speed (a request's timeout starts once it is sent:
--- vw3.pairing's timed_out). A function: the speed is the preference's when it is called.
-local function sent_in(frame)
-  return frame.length * (frame.ascii and ASCII_CHAR_TIME or CHAR_TIME)
-end
-
 -- Record times are integer nanoseconds (show.lua record_ns): a difference in seconds is theirs divided
 -- once, as vw3-decode's Stamps subtract (model.py Stamp.__sub__), so that every comparison and text agrees.
 local NS = 1e9
+
+-- Seconds from a frame's first byte's time until its last byte was sent (a request's timeout starts then:
+-- vw3.pairing's timed_out; model.py sent_in): its characters' time at the line's speed, or later where the record
+-- holding its last byte says so (frame.tail, frame.tail_chars: tail_at). A function: the speed is the
+-- preference's when it is called.
+local function sent_in(frame)
+  local char_time = frame.ascii and ASCII_CHAR_TIME or CHAR_TIME
+  local sent, tail = frame.length * char_time, frame.tail
+  if tail and frame.time then
+    local last = (tail - frame.time) / NS + frame.tail_chars * char_time
+    if last > sent then return last end
+  end
+  return sent
+end
+
+-- The record holding the frame's last byte, where it is not the one the frame starts at (stream.py _tail_at):
+-- its time in frame.tail, and the bytes from its start to the frame's end in frame.tail_chars.
+local function tail_at(s, frame)
+  local times, stop = s.times, frame.offset + frame.length
+  local index = first_above(times, stop - 1, 2) - 2
+  local start = times[index]
+  if start ~= nil and start ~= frame.offset and times[index + 1] then
+    frame.tail, frame.tail_chars = times[index + 1], stop - start
+  end
+end
 
 -- Silences longer than allowed inside the frame (timing.py inner_gaps: between the records it spans, each
 -- less its bytes' time on the line), as warnings kept in frame.gaps: take_frame adds them after the
@@ -5432,6 +5451,7 @@ local function emit(s, frame, items)
   flush_noise(s, items)
   s.noise_cut = false
   if s.times[3] ~= nil then inner_gaps(s, frame) end -- (a frame of one record has no silence inside)
+  if s.times[3] ~= nil or s.times[1] ~= frame.offset then tail_at(s, frame) end -- (else its record is its own)
   items[#items + 1] = frame
   s.framed_end = frame.offset + frame.length -- (a bound: bounded.py _bounded_start)
   expect_after(s, frame)
@@ -5871,7 +5891,8 @@ local function cut_answer(s, b, i, n, silence)
     if scan_match(s, b, i, n, length, true) ~= NONE then return nil end
     length = declared
   end
-  if length ~= NEED and not (n - i < length and length <= MAX_ADU) then return nil end
+  -- (a length rule's reach goes over MAX_ADU too, as match takes such a frame whole; a scan's stops there)
+  if length ~= NEED and not (n - i < length and length <= (is_scan and MAX_ADU or MAX_COUNTED)) then return nil end
   if intact_inside(s, b, i, n - i, n, true) then return nil end
   return cut_reason(kind, n - i, length, silence)
 end
@@ -6060,7 +6081,7 @@ local function cut_request(s, b, i, n, silence)
   local slave, code = b[i], b[i + 1]
   if not ((slave >= 1 and slave <= MAX_SLAVE) or (slave == 0 and not DATA.not_broadcast[code])) then return nil end
   local length, is_scan = reading_of(s, b, i, n, REQUEST)
-  if length == nil or is_scan or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then return nil end
+  if length == nil or is_scan or (length ~= NEED and not (n - i < length and length <= MAX_COUNTED)) then return nil end
   if checks_out(s, b, i, n) or intact_inside(s, b, i, n - i, n, true) then return nil end
   return cut_reason(REQUEST, n - i, length, silence)
 end
@@ -6477,19 +6498,19 @@ local function ascii_cut_answer(s, b, i, n)
   -- The answer's reading, unless it is not as long as the request implies: then the next, the next request.
   local bin = hex_pairs(b, i + 1, count)
   if not awaited(s, bin, 0, count) then return nil end
-  local list, kind, length = interpretations(s, bin[0], bin[1], bin, 0, count), nil, nil
+  local list, kind, length, longest = interpretations(s, bin[0], bin[1], bin, 0, count), nil, nil, MAX_COUNTED
   for index = 1, #list do
     local found, is_scan, declared = list[index][2](bin, 0, count) -- (the RTU frame's: its CRC an LRC here)
     if is_scan then found = declared ~= nil and declared > 0 and declared or NEED end
     if not not_the_answer(s, list[index][1], found) then
-      kind, length = list[index][1], found
+      kind, length, longest = list[index][1], found, is_scan and MAX_ADU or MAX_COUNTED -- (long_line's reach)
       break
     end
   end
   if kind == nil then return nil end
   if length == NEED then return cut_reason(kind, n - i, NEED) end
   local characters = 1 + 2 * (length - 1) + 2 -- ':', the hex pairs of the ADU and the LRC, CR LF
-  if n - i < characters and length <= MAX_ADU then return cut_reason(kind, n - i, characters) end
+  if n - i < characters and length <= longest then return cut_reason(kind, n - i, characters) end
   return nil
 end
 

@@ -197,16 +197,18 @@ static inline void stats_seen(Bus *b, const Time *t) {
     b->last_seen = *t;
 }
 
-/* BusTiming.add, for one item. `response`: its response time, NULL for none (a negative one never comes:
- * BusTiming.add and the engine's pairing leave it out); 0 or -1 (no memory). */
-static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, int kind, int slave, int broadcast,
-                   int unanswered, int crc_ok, const double *response, unsigned long long number, long long offset) {
+/* BusTiming.add, for one item: `sent`, the seconds from its first byte's time until its last byte was sent
+ * (model.sent_in); `response`: its response time, NULL for none (a negative one never comes: BusTiming.add
+ * and the engine's pairing leave it out); 0 or -1 (no memory). */
+static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, double sent, int kind, int slave,
+                   int broadcast, int unanswered, int crc_ok, const double *response, unsigned long long number,
+                   long long offset) {
     if (!t->has) {
         b->untimed++;
         return 0;
     }
     b->timed = 1;
-    double duration = (double)length * b->char_time, end = t->d + duration;
+    double duration = (double)length * b->char_time, end = t->d + sent;
     int same_stamp = b->previous.has && time_sub(t, &b->previous) == 0;
     if (!b->first.has) {
         b->first = b->stretch = *t;
@@ -237,7 +239,7 @@ static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, in
     b->has_last_end = 1;
     if (kind == ITEM_NOISE) return 0;
     if (kind == KIND_REQUEST) {
-        b->sent = duration;
+        b->sent = sent;
         if (b->has_answer_end && quantile_add(tallies, &b->turnaround, TALLY_TURNAROUND, 0, t->d - b->answer_end) < 0)
             return -1;
         b->has_answer_end = 0;

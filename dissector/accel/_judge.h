@@ -12,16 +12,18 @@
 #define VW3_JUDGE_H
 
 /* One transaction: request offset, answer offset (-1: unanswered), lengths, answer kind, whether each
- * has a time, their times (struct "=qqiiBBBq q": accel/framespath.py RECORD). */
+ * has a time, their times and their Tails (struct "=qqiiBBBqqqqii": accel/framespath.py RECORD). */
 static int frames_record(Engine *e, const FrameRef *q, const FrameRef *a) {
     if (!e->frames) return 1;
     struct __attribute__((packed)) {
         long long q_at, a_at;
         int32_t q_length, a_length;
         uint8_t a_kind, q_timed, a_timed;
-        long long q_ns, a_ns;
+        long long q_ns, a_ns, q_tail_ns, a_tail_ns;
+        int32_t q_tail_chars, a_tail_chars;
     } record = {q->at, a ? a->at : -1, (int32_t)q->length, a ? (int32_t)a->length : 0, (uint8_t)(a ? a->kind : 0),
-                (uint8_t)q->timed, (uint8_t)(a ? a->timed : 0), q->ns, a ? a->ns : 0};
+                (uint8_t)q->timed, (uint8_t)(a ? a->timed : 0), q->ns, a ? a->ns : 0, q->tail_ns, a ? a->tail_ns : 0,
+                (int32_t)q->tail_chars, a ? (int32_t)a->tail_chars : 0};
     out_put(&e->out, (const char *)&record, sizeof record);
     return e->out.failed ? -1 : 1;
 }

@@ -330,16 +330,16 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
         return -1;
     Time qt = stamp_time(qf->timed, qf->ns);
     stats_seen(&st->bus, &qt);
-    if (bus_add(st->tallies, &st->bus, &qt, qf->length, KIND_REQUEST, slave, 0, af == NULL, 1, NULL, number,
-                base + qf->at) < 0)
+    if (bus_add(st->tallies, &st->bus, &qt, qf->length, frame_sent(qf, st->bus.char_time), KIND_REQUEST, slave, 0,
+                af == NULL, 1, NULL, number, base + qf->at) < 0)
         return -1;
     if (af != NULL) {
         Time at = stamp_time(af->timed, af->ns);
         double response = stamp_seconds(af->ns, qf->ns);
         int timed = qf->timed && af->timed;
         stats_seen(&st->bus, &at);
-        if (bus_add(st->tallies, &st->bus, &at, af->length, af->kind, slave, 0, 0, 1, timed ? &response : NULL,
-                    number + 1, base + af->at) < 0)
+        if (bus_add(st->tallies, &st->bus, &at, af->length, frame_sent(af, st->bus.char_time), af->kind, slave, 0, 0,
+                    1, timed ? &response : NULL, number + 1, base + af->at) < 0)
             return -1;
         if (timed && tally_add(st->tallies, TALLY_TIMES, slave << 8 | function, (long long)rint(response * 1e9), 1) < 0)
             return -1;
@@ -597,15 +597,17 @@ static PyObject *stats_bus_line(Stats *st, PyObject *args) {
     Py_RETURN_NONE;
 }
 
-/* bus_item(time, length, kind, slave, broadcast, unanswered, crc_ok, response_time, number, offset):
- * BusTiming.add of an item the Python stages showed (kind: 0 noise, 1 request, 2 response, 3 exception). */
+/* bus_item(time, length, sent, kind, slave, broadcast, unanswered, crc_ok, response_time, number, offset):
+ * BusTiming.add of an item the Python stages showed (kind: 0 noise, 1 request, 2 response, 3 exception; sent:
+ * model.sent_in at the bus's character time). */
 static PyObject *stats_bus_item(Stats *st, PyObject *args) {
     PyObject *time, *response;
     long long length, offset;
+    double sent;
     int kind, slave, broadcast, unanswered, crc_ok;
     unsigned long long number;
-    if (!PyArg_ParseTuple(args, "OLiippiOKL", &time, &length, &kind, &slave, &broadcast, &unanswered, &crc_ok,
-                          &response, &number, &offset))
+    if (!PyArg_ParseTuple(args, "OLdiippiOKL", &time, &length, &sent, &kind, &slave, &broadcast, &unanswered,
+                          &crc_ok, &response, &number, &offset))
         return NULL;
     Time t;
     double seconds = 0.0;
@@ -613,7 +615,7 @@ static PyObject *stats_bus_item(Stats *st, PyObject *args) {
     if (response != Py_None && (seconds = PyFloat_AsDouble(response)) == -1.0 && PyErr_Occurred()) return NULL;
     if (slave < 0 || slave > 255 || kind < 0 || kind > KIND_EXCEPTION)
         return PyErr_Format(PyExc_ValueError, "bus_item: slave 0..255, kind 0..3");
-    if (bus_add(st->tallies, &st->bus, &t, length, kind, slave, broadcast, unanswered, crc_ok,
+    if (bus_add(st->tallies, &st->bus, &t, length, sent, kind, slave, broadcast, unanswered, crc_ok,
                 response != Py_None ? &seconds : NULL, number, offset) < 0)
         return NULL;
     Py_RETURN_NONE;
@@ -753,7 +755,7 @@ static PyMethodDef stats_methods[] = {
     {"poll_fail", (PyCFunction)stats_poll_fail, METH_O, "poll_fail(key): its answer was an exception."},
     {"bus_line", (PyCFunction)stats_bus_line, METH_VARARGS, "bus_line(char_time, t35, timeout, new_input)"},
     {"bus_item", (PyCFunction)stats_bus_item, METH_VARARGS,
-     "bus_item(time, length, kind, slave, broadcast, unanswered, crc_ok, response_time, number, offset)"},
+     "bus_item(time, length, sent, kind, slave, broadcast, unanswered, crc_ok, response_time, number, offset)"},
     {"stamp", (PyCFunction)stats_stamp, METH_O, "stamp(time): an item's time (first and last seen)"},
     {"response", (PyCFunction)stats_response, METH_VARARGS, "response(slave, function, ns): a response time"},
     {"tallies", (PyCFunction)stats_tallies, METH_O, "tallies(kind) -> {owner: {key: count}}: a histogram"},

@@ -494,7 +494,18 @@ typedef struct {
     long long ns;
     long long before;    /* run_timed() with befores: the time of the packet before its first (_timeline.h) */
     long long decided;   /* run_timed(): the Python framer's buffer end when it takes this frame */
+    /* model.Tail: the time of the chunk holding its last byte and the bytes from that chunk's start to the
+     * frame's end (ns and length where that chunk is its first and starts at it, or there are no times) */
+    long long tail_ns;
+    Py_ssize_t tail_chars;
 } FrameRef;
+
+/* model.sent_in: seconds from the frame's first byte's time until its last byte was sent (its length at the
+ * line's speed, or later where its last byte's chunk says so). */
+static inline double frame_sent(const FrameRef *f, double char_time) {
+    double sent = (double)f->length * char_time, last = stamp_seconds(f->tail_ns, f->ns) + (double)f->tail_chars * char_time;
+    return last > sent ? last : sent;
+}
 
 /* The frame of `length` bytes at i ends in the CRC of the bytes before it. */
 static inline int crc_ok(const uint8_t *b, Py_ssize_t i, Py_ssize_t length) {
@@ -785,9 +796,9 @@ static inline int frame_kind(const Engine *e, const uint8_t *b, Py_ssize_t i, Py
 static int next_frame(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f, long long decided) {
     int kind = frame_kind(e, b, i, n), scanned;
     if (kind < 0) return kind;
-    *f = (FrameRef){i, 0, kind, b[i], b[i + 1], 0, 0, 0}; /* untimed */
+    *f = (FrameRef){i, 0, kind, b[i], b[i + 1], 0, 0, 0, 0, 0, 0}; /* untimed */
     if (e->tl.active) return timed_frame(e, b, n, f, decided);
-    f->length = first_length(e, b, i, n, f->function, kind, &scanned);
+    f->length = f->tail_chars = first_length(e, b, i, n, f->function, kind, &scanned);
     if (f->length < 0 || scanned) return f->length < 0 ? (int)f->length : FRAME_OK;
     /* The Python fast path needs the byte after the frame, and takes the careful path on a 00. */
     if (i + f->length >= n) return FRAME_NEED;
@@ -1309,7 +1320,7 @@ static int echoes(const uint8_t *b, const FrameRef *q, const FrameRef *a) {
 
 /* The frame after request q, expected as its answer: FRAME_OK (in *a: its answer, or the next request when
  * it was not answered), FRAME_NEED, or FRAME_HANDOVER, an answer later than the timeout after q was sent
- * (its first byte's time and its characters' at the line's speed) too (no answer:
+ * (frame_sent) too (no answer:
  * pairing.py's warning), stamped before q (time going backwards: pairing.py's warning) or not echoing q (an
  * answer to nothing: pairing.py's note). A caller that
  * does not take the transaction takes the expectation back. */
@@ -1319,7 +1330,7 @@ static int answer_to(Engine *e, const uint8_t *b, Py_ssize_t n, const FrameRef *
     int found = next_frame(e, b, q->at + q->length, n, a, q->decided);
     if (found == FRAME_OK && a->kind != KIND_REQUEST &&
         ((q->timed && a->timed && (a->ns < q->ns || (e->tl.timeout >= 0 &&
-          stamp_seconds(a->ns, q->ns) - (double)q->length * e->tl.char_time > e->tl.timeout)))
+          stamp_seconds(a->ns, q->ns) - frame_sent(q, e->tl.char_time) > e->tl.timeout)))
          || !echoes(b, q, a)))
         return FRAME_HANDOVER;
     return found;

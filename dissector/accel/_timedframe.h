@@ -101,9 +101,14 @@ static int timed_frame(Engine *e, const uint8_t *b, Py_ssize_t n, FrameRef *f, l
         seen = chunk_end(t, chunk_of(t, seen));
     }
     if (silence_inside(t, at, f->length)) return FRAME_HANDOVER;
-    Py_ssize_t k = chunk_of(t, at);
+    Py_ssize_t last = chunk_of(t, at + f->length - 1), k = chunk_of(t, at);
     f->timed = (t->flags[k] & CHUNK_TIMED) != 0;
-    f->ns = t->ns[k];
+    f->ns = f->tail_ns = t->ns[k];
+    f->tail_chars = f->length;
+    if (f->timed && (t->flags[last] & CHUNK_TIMED)) { /* (its Tail: stream.py _tail_at) */
+        f->tail_ns = t->ns[last];
+        f->tail_chars = (Py_ssize_t)(at + f->length - t->start[last]);
+    }
     f->before = t->before != NULL ? t->before[k] : NO_BEFORE;
     f->decided = seen;
     return FRAME_OK;

@@ -37,7 +37,7 @@ from dissector.pipeline import Dissector
 from dissector.render import bustiming
 from dissector.render.timefmt import Clock
 
-RECORD = struct.Struct("=qqiiBBBqq")  # _judge.h frames_record
+RECORD = struct.Struct("=qqiiBBBqqqqii")  # _judge.h frames_record
 _KINDS = {number: kind for kind, number in bustiming._KINDS.items()}  # (an answer's: response, exception)
 _NOTHING = bytes(256 * 32)  # no (slave, function) is the Python stages' alone
 SLICE = 256  # transactions decoded and shown at a time
@@ -188,11 +188,14 @@ class _Frames:
         number = self.numbered
         annotate = self.annotate
         items: list[Item] = []
-        for q_at, a_at, q_length, a_length, a_kind, q_timed, a_timed, q_ns, a_ns in RECORD.iter_unpack(records):
+        for (q_at, a_at, q_length, a_length, a_kind, q_timed, a_timed, q_ns, a_ns, q_tail_ns, a_tail_ns, q_tail,
+             a_tail) in RECORD.iter_unpack(records):
             raw = buf[q_at : q_at + q_length]
             crc = raw[-2] | raw[-1] << 8
             request = Frame(base + q_at, raw, Stamp(q_ns) if q_timed else None, Kind.REQUEST, raw[0], raw[1] & 0x7F,
                             crc, crc)
+            if q_tail != q_length or q_tail_ns != q_ns:  # (its last byte in a later chunk: model.sent_in)
+                request.tail = (Stamp(q_tail_ns), q_tail)
             number += 1
             request.number = number
             items.append(request)
@@ -203,6 +206,8 @@ class _Frames:
                 crc = raw[-2] | raw[-1] << 8
                 answer = Frame(base + a_at, raw, Stamp(a_ns) if a_timed else None, _KINDS[a_kind], raw[0],
                                raw[1] & 0x7F, crc, crc)
+                if a_tail != a_length or a_tail_ns != a_ns:
+                    answer.tail = (Stamp(a_tail_ns), a_tail)
                 number += 1
                 answer.number = number
                 answer.request = request

@@ -252,14 +252,15 @@ class AsciiFramer(Awaiting, StreamFramer):
         # (the answer's reading, unless it is not as long as the request implies: then the next, the next request)
         for kind, rule in self._interpretations(binary, 0):
             length = rule(binary, 0, pairs)  # (the RTU frame's, its 2-byte CRC an LRC here)
+            longest = MAX_COUNTED  # (a length rule's reach, over MAX_ADU too: _long_line takes such a line whole)
             if type(length) is Scan:
-                length = length.declared if length.declared > 0 else NEED
+                length, longest = length.declared if length.declared > 0 else NEED, MAX_ADU
             if not self._not_the_answer(kind, length):
                 break
         else:
             return None
         characters = 1 + 2 * (length - 1) + 2  # ':', the hex pairs of the ADU and the LRC, CR LF
-        if length != NEED and not (n - i < characters and length <= MAX_ADU):
+        if length != NEED and not (n - i < characters and length <= longest):
             return None
         return self._cut_reason(kind, f"{n - i} of {characters} bytes" if length != NEED else f"{n - i} bytes of it")
 
@@ -278,4 +279,5 @@ class AsciiFramer(Awaiting, StreamFramer):
     def _reject(self, raw: bytes, i: int, reason: str, items: list[Item]) -> None:
         self._flush_noise(items)
         offset = self._base + i
-        items.append(Noise(offset=offset, raw=raw, time=self._time_at(offset), reason=reason))
+        items.append(Noise(offset=offset, raw=raw, time=self._time_at(offset), reason=reason,
+                           tail=self._tail_at(offset + len(raw), offset)))

@@ -15,7 +15,7 @@ chance of inventing a frame.
 """
 from __future__ import annotations
 
-from dissector.framing.rules import MAX_ADU, MAX_SLAVE, MIN_ADU, NEED, NOT_BROADCAST, Scan, _crc_ok
+from dissector.framing.rules import MAX_ADU, MAX_COUNTED, MAX_SLAVE, MIN_ADU, NEED, NOT_BROADCAST, Scan, _crc_ok
 from dissector.model import Frame, Kind
 from dissector.protocol.rules import text
 
@@ -162,7 +162,7 @@ class Bounded:
                 break
         else:
             return None
-        if type(length) is Scan or (length != NEED and not n - i < length <= MAX_ADU):
+        if type(length) is Scan or (length != NEED and not n - i < length <= MAX_COUNTED):  # (as _cut_answer)
             return None
         if self._checks_out(buf, i, n) or self._intact_inside(buf, i, n - i, n, True):
             return None

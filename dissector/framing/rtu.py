@@ -379,12 +379,13 @@ class RtuFramer(RecordEnds, Bounded, Awaiting, StreamFramer):
                 break
         else:
             return None
+        longest = MAX_COUNTED  # (a length rule's reach, over MAX_ADU too: _match takes such a frame whole)
         if type(length) is Scan:
             # (a rule with a CRC fallback: cut only when the bytes there hold no frame a scan finds)
             if length.declared == NONE or self._scan(buf, i, n, length, True):
                 return None
-            length = length.declared
-        if length != NEED and not n - i < length <= MAX_ADU:
+            length, longest = length.declared, MAX_ADU
+        if length != NEED and not n - i < length <= longest:
             return None
         if self._intact_inside(buf, i, n - i, n, True):
             return None
@@ -522,6 +523,7 @@ class RtuFramer(RecordEnds, Bounded, Awaiting, StreamFramer):
                                 function & 0x7F,
                                 crc,
                                 crc,
+                                tail=self._tail_at(offset + length, offset) if self._timed else None,
                             )
                         )
                         # (awaits_answer: not a broadcast, not a request the spec has no server answer)

@@ -8,11 +8,13 @@ its own: 5 times the work, bench/live_feed.py)."""
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
+from bisect import bisect_right
+from operator import itemgetter
 
 from dissector.framing.answers import answer_length
 from dissector.framing.offsets import EndAnswers, Offsets
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming, may_pause, silence_before, silences_inside
-from dissector.model import CapturedPart, Chunk, Frame, Item, Kind, Noise
+from dissector.model import CapturedPart, Chunk, Frame, Item, Kind, Noise, Tail
 from dissector.protocol.rules import awaits_answer, echoed
 from dissector.sources.common import PartChunk
 from dissector.sources.serial_times import ByteTimedChunk, ByteTimes
@@ -28,6 +30,7 @@ GLITCHY_AFTER = 3
 GLITCH_SCORE_MAX = 8
 # The reason of the item a record captured in part is (StreamFramer._cut_part); lua/src/stream.lua says the same.
 CAPTURED_IN_PART = "captured in part"
+_chunk_start = itemgetter(0)  # (StreamFramer._times' entries by their stream offset)
 
 
 def part_reason(part: CapturedPart) -> str:
@@ -73,9 +76,11 @@ class StreamFramer(ABC):
         self._noise_offset = 0
         self._noise_reason = ""
         self._noise_time: float | None = None
-        # (index in _noise, reason, time) of each stretch after a silence inside the run (_add_noise): the
-        # run stays one for the framer's decisions (fast path, repeats, glitches), its items are cut there.
-        self._noise_parts: list[tuple[int, str, float | None]] = []
+        # (index in _noise, reason, time, the Tail of the stretch before) of each stretch after a silence inside the
+        # run (_add_noise): the run stays one for the framer's decisions (fast path, repeats, glitches), its items
+        # are cut there.
+        self._noise_parts: list[tuple[int, str, float | None, Tail | None]] = []
+        self._noise_tail: Tail | None = None  # of the run's last byte (its bytes' times are gone once consumed)
         # Every noise byte since the last frame (or boundary) is a glitch byte (rtu.GLITCH_BYTES): the
         # next frame start is still where one is expected (RtuFramer._anchored).
         self._glitches_only = True
@@ -290,6 +295,27 @@ class StreamFramer(ABC):
                 return time if byte_times is None or time is None else byte_times.at(offset - start)
         return None
 
+    def _tail_at(self, end: int, offset: int = -1) -> Tail | None:
+        """An item's Tail (model.sent_in) that ends at absolute offset `end`: the time of the run of bytes with
+        one time holding its last byte and the characters from that run's first byte to `end`; None where that
+        run starts at `offset` (the item's first byte: its time and length say it) or has no time."""
+        times = self._times
+        if not self._timed or not times:
+            return None
+        index = bisect_right(times, end - 1, key=_chunk_start) - 1
+        if index < 0:
+            return None
+        start, time, byte_times = times[index]
+        if time is None:
+            return None
+        if byte_times is not None:
+            last = end - 1 - start
+            ns = byte_times.ns(last)
+            while last and byte_times.ns(last - 1) == ns:  # (to the start of its run: bytes held at the floor)
+                last -= 1
+            start, time = start + last, byte_times.at(last)
+        return None if start == offset else (time, end - start)
+
     def _last_run(self) -> tuple[int, float | None]:
         """(offset, time) of the last bytes fed with one time: the chunk before the next, for silence_before."""
         start, time, byte_times = self._times[-1]
@@ -344,7 +370,7 @@ class StreamFramer(ABC):
                     self._add_run(start, at, reason, items)
                 # (a silence right where a run was cut at NOISE_ITEM_MAX starts the next item anyway)
                 if self._noise:
-                    self._noise_parts.append((len(self._noise), reason, self._time_at(base + at)))
+                    self._noise_parts.append((len(self._noise), reason, self._time_at(base + at), self._noise_tail))
                 start = at
         self._add_run(start, end, reason, items)
 
@@ -359,6 +385,7 @@ class StreamFramer(ABC):
             take = min(end - start, NOISE_ITEM_MAX - len(self._noise))
             self._noise += buf[start : start + take]
             start += take
+            self._noise_tail = self._tail_at(self._base + start)
             if len(self._noise) >= NOISE_ITEM_MAX:
                 self._flush_noise(items)
                 self._noise_cut = True
@@ -380,6 +407,7 @@ class StreamFramer(ABC):
                 self._glitch_runs -= 1
         self._flush_noise(items)
         self._noise_cut = False
+        frame.tail = self._tail_at(frame.offset + len(frame.raw), frame.offset)
         items.append(frame)
         self._await_after(frame)
 
@@ -397,9 +425,9 @@ class StreamFramer(ABC):
     def _flush_noise(self, items: list[Item]) -> None:
         if self._noise:
             noise, parts = self._noise, self._noise_parts
-            cuts = [(0, self._noise_reason, self._noise_time), *parts, (len(noise), "", None)]
-            for (begin, reason, time), (stop, _reason, _time) in zip(cuts, cuts[1:]):
+            cuts = [(0, self._noise_reason, self._noise_time, None), *parts, (len(noise), "", None, self._noise_tail)]
+            for (begin, reason, time, _tail), (stop, _reason, _time, tail) in zip(cuts, cuts[1:]):
                 raw = bytes(noise[begin:stop])
-                items.append(Noise(offset=self._noise_offset + begin, raw=raw, time=time, reason=reason))
+                items.append(Noise(offset=self._noise_offset + begin, raw=raw, time=time, reason=reason, tail=tail))
             self._noise = bytearray()
             self._noise_parts = []

@@ -1,8 +1,11 @@
 """Bus timing and slave health from a time-stamped capture: what an RS-485 troubleshooter measures.
 
-Times are those of each item's first byte (pcap records, hex-dump lines, live reads); an item ends
-`length x character time` later (11 bits a character in RTU, 10 in ASCII, or what the pcapng
-interface description says: `19200 8N2`). From there:
+Times are those of each item's first byte (pcap records, hex-dump lines, live reads); an item ends when
+its last byte has been sent, `length x character time` later (11 bits a character in RTU, 10 in ASCII, or
+what the pcapng interface description says: `19200 8N2`), or later where its last byte came later: a frame
+with silences inside it ends at the time of the record (run of bytes with one time) holding its last byte
+plus that byte's place in it (model.sent_in; a slow line's frames come in pieces a few characters apart).
+The load counts its characters only. From there:
 - load: the fraction of the time the line carries characters (frames and noise), overall and per
   minute of the capture (the last minute over the time it covers);
 - inter-frame gaps: the silence between the end of one item and the start of the next, as a
@@ -43,7 +46,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming, mode_bits
-from dissector.model import Item, Kind, stamped_before
+from dissector.model import Item, Kind, sent_in, stamped_before
 from dissector.protocol.rules import awaits_answer
 from dissector.framing.linespeed import LineSettings
 from dissector.render.describe import count_text
@@ -289,15 +292,17 @@ class BusTiming:
     def add(self, item: Item) -> None:
         time = item.time
         if self.store is not None:
+            sent = sent_in(item, self.char_time)
             if item.kind is Kind.NOISE:
-                self.store.bus_item(time, item.length, 0, 0, False, False, False, None, item.number, item.offset)
+                self.store.bus_item(time, item.length, sent, 0, 0, False, False, False, None, item.number,
+                                    item.offset)
             else:
                 frame: Any = item
                 response_time = frame.response_time
                 if response_time is not None and response_time < 0:
                     response_time = self._backwards(frame)
                 # (a request that awaits nothing goes as a broadcast: the store's bus_add skips its outage run)
-                self.store.bus_item(time, frame.length, _KINDS[frame.kind], frame.slave, _awaits_nothing(frame),
+                self.store.bus_item(time, frame.length, sent, _KINDS[frame.kind], frame.slave, _awaits_nothing(frame),
                                     frame.unanswered, frame.crc_ok, response_time, frame.number, frame.offset)
             return
         if time is None:
@@ -305,7 +310,8 @@ class BusTiming:
             return
         self.timed = True
         duration = item.length * self.char_time
-        end = time + duration
+        sent = sent_in(item, self.char_time)
+        end = time + sent
         back = self.backwards
         previous = back.previous
         same_stamp = previous is not None and time - previous == 0  # (Stamps subtract exactly, as _bus.h)
@@ -342,7 +348,7 @@ class BusTiming:
             return
         frame = item
         if kind is Kind.REQUEST:
-            self._sent = duration
+            self._sent = sent
             if self._answer_end is not None:
                 self.turnaround.add(time - self._answer_end)
             self._answer_end = None

@@ -264,19 +264,19 @@ local function ascii_cut_answer(s, b, i, n)
   -- The answer's reading, unless it is not as long as the request implies: then the next, the next request.
   local bin = hex_pairs(b, i + 1, count)
   if not awaited(s, bin, 0, count) then return nil end
-  local list, kind, length = interpretations(s, bin[0], bin[1], bin, 0, count), nil, nil
+  local list, kind, length, longest = interpretations(s, bin[0], bin[1], bin, 0, count), nil, nil, MAX_COUNTED
   for index = 1, #list do
     local found, is_scan, declared = list[index][2](bin, 0, count) -- (the RTU frame's: its CRC an LRC here)
     if is_scan then found = declared ~= nil and declared > 0 and declared or NEED end
     if not not_the_answer(s, list[index][1], found) then
-      kind, length = list[index][1], found
+      kind, length, longest = list[index][1], found, is_scan and MAX_ADU or MAX_COUNTED -- (long_line's reach)
       break
     end
   end
   if kind == nil then return nil end
   if length == NEED then return cut_reason(kind, n - i, NEED) end
   local characters = 1 + 2 * (length - 1) + 2 -- ':', the hex pairs of the ADU and the LRC, CR LF
-  if n - i < characters and length <= MAX_ADU then return cut_reason(kind, n - i, characters) end
+  if n - i < characters and length <= longest then return cut_reason(kind, n - i, characters) end
   return nil
 end
 

@@ -270,7 +270,8 @@ local function cut_answer(s, b, i, n, silence)
     if scan_match(s, b, i, n, length, true) ~= NONE then return nil end
     length = declared
   end
-  if length ~= NEED and not (n - i < length and length <= MAX_ADU) then return nil end
+  -- (a length rule's reach goes over MAX_ADU too, as match takes such a frame whole; a scan's stops there)
+  if length ~= NEED and not (n - i < length and length <= (is_scan and MAX_ADU or MAX_COUNTED)) then return nil end
   if intact_inside(s, b, i, n - i, n, true) then return nil end
   return cut_reason(kind, n - i, length, silence)
 end
@@ -459,7 +460,7 @@ local function cut_request(s, b, i, n, silence)
   local slave, code = b[i], b[i + 1]
   if not ((slave >= 1 and slave <= MAX_SLAVE) or (slave == 0 and not DATA.not_broadcast[code])) then return nil end
   local length, is_scan = reading_of(s, b, i, n, REQUEST)
-  if length == nil or is_scan or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then return nil end
+  if length == nil or is_scan or (length ~= NEED and not (n - i < length and length <= MAX_COUNTED)) then return nil end
   if checks_out(s, b, i, n) or intact_inside(s, b, i, n - i, n, true) then return nil end
   return cut_reason(REQUEST, n - i, length, silence)
 end

@@ -118,15 +118,34 @@ function lane.line_speed(baud)
 end
 lane.line_speed(TIMING.default_baud)
 
--- Seconds a frame's characters take on the line at its speed (a request's timeout starts once it is sent:
--- vw3.pairing's timed_out). A function: the speed is the preference's when it is called.
-local function sent_in(frame)
-  return frame.length * (frame.ascii and ASCII_CHAR_TIME or CHAR_TIME)
-end
-
 -- Record times are integer nanoseconds (show.lua record_ns): a difference in seconds is theirs divided
 -- once, as vw3-decode's Stamps subtract (model.py Stamp.__sub__), so that every comparison and text agrees.
 local NS = 1e9
+
+-- Seconds from a frame's first byte's time until its last byte was sent (a request's timeout starts then:
+-- vw3.pairing's timed_out; model.py sent_in): its characters' time at the line's speed, or later where the record
+-- holding its last byte says so (frame.tail, frame.tail_chars: tail_at). A function: the speed is the
+-- preference's when it is called.
+local function sent_in(frame)
+  local char_time = frame.ascii and ASCII_CHAR_TIME or CHAR_TIME
+  local sent, tail = frame.length * char_time, frame.tail
+  if tail and frame.time then
+    local last = (tail - frame.time) / NS + frame.tail_chars * char_time
+    if last > sent then return last end
+  end
+  return sent
+end
+
+-- The record holding the frame's last byte, where it is not the one the frame starts at (stream.py _tail_at):
+-- its time in frame.tail, and the bytes from its start to the frame's end in frame.tail_chars.
+local function tail_at(s, frame)
+  local times, stop = s.times, frame.offset + frame.length
+  local index = first_above(times, stop - 1, 2) - 2
+  local start = times[index]
+  if start ~= nil and start ~= frame.offset and times[index + 1] then
+    frame.tail, frame.tail_chars = times[index + 1], stop - start
+  end
+end
 
 -- Silences longer than allowed inside the frame (timing.py inner_gaps: between the records it spans, each
 -- less its bytes' time on the line), as warnings kept in frame.gaps: take_frame adds them after the
@@ -319,6 +338,7 @@ local function emit(s, frame, items)
   flush_noise(s, items)
   s.noise_cut = false
   if s.times[3] ~= nil then inner_gaps(s, frame) end -- (a frame of one record has no silence inside)
+  if s.times[3] ~= nil or s.times[1] ~= frame.offset then tail_at(s, frame) end -- (else its record is its own)
   items[#items + 1] = frame
   s.framed_end = frame.offset + frame.length -- (a bound: bounded.py _bounded_start)
   expect_after(s, frame)
