@@ -9,6 +9,8 @@ echo teach nothing, and every line after it was warned `line ends with CR then 0
 plugin: tests/integration/test_lua_pymodbus_delimiter_echo.py."""
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from helpers import ascii_items, run_cli, use_engine
@@ -25,7 +27,8 @@ BAD_DATA = ("diagnostic data 0021 is not what sub-function 03h takes (a characte
 SUMMARY = [
     "     1            -   5 request   Read Holding Registers 1..2 (2)  LRC ok",
     "     2            -   5 response  Read Holding Registers 1..2 (2): 1=3 2=6 [#1]  LRC ok",
-    f"     3            -   5 request   Diagnostics 03h Change ASCII Input Delimiter = 33 [warning: {BAD_DATA}]  LRC ok",
+    "     3            -   5 request   Diagnostics 03h Change ASCII Input Delimiter = 33 "
+    f"[warning: {BAD_DATA}]  LRC ok",
     "     4            -   5 response  Diagnostics 03h Change ASCII Input Delimiter = 33 [#3]  LRC ok",
     "     5            -   5 request   Read Holding Registers 1..2 (2)  LRC ok",
     "     6            -   5 response  Read Holding Registers 1..2 (2): 1=3 2=6 [#5]  LRC ok",
@@ -35,7 +38,7 @@ SUMMARY = [
 
 
 @pytest.mark.parametrize("pure", [False, True])
-def test_pymodbus_delimiter_change_is_followed(tmp_path, pure: bool, monkeypatch: pytest.MonkeyPatch) -> None:
+def test_pymodbus_delimiter_change_is_followed(tmp_path: Path, pure: bool, monkeypatch: pytest.MonkeyPatch) -> None:
     use_engine(monkeypatch, pure)
     path = tmp_path / "pymodbus_delimiter.bin"
     path.write_bytes(DATA)
