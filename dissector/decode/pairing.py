@@ -19,8 +19,9 @@ would. With `hold=False`, every item is released at once, and the next request c
 instead.
 
 The timeout rule (with timestamps and a timeout): a request is answered only by a response whose first
-byte came at most `timeout` seconds after the request was sent (its first byte's time and its bytes'
-transmission time at the line's speed, `char_time`), as a Modbus master starts its response timeout
+byte came at most `timeout` seconds after the request was sent (when its last byte was: its first byte's
+time and its bytes' transmission time at the line's speed, `char_time`, or later where its last byte came
+later, model.sent_in), as a Modbus master starts its response timeout
 once it has sent the request (Serial Line Guide 2.4.1): 249 bytes take 2.3 s at 1200 baud; a later frame
 ends the wait, the request is unanswered and a late response is shown as such. So whether a request was
 answered is known `timeout` seconds after it at the latest: a live capture calls `expire(now)` to release
@@ -57,7 +58,7 @@ import weakref
 
 from dissector.framing.answers import answer_length
 from dissector.framing.stream import part_reason
-from dissector.model import CUT_ANSWER, CapturedPart, Frame, Item, Kind, Noise, stamped_before
+from dissector.model import CUT_ANSWER, CapturedPart, Frame, Item, Kind, Noise, sent_in, stamped_before
 from dissector.protocol import table
 from dissector.protocol.rules import awaits_answer, echoed, text
 
@@ -181,7 +182,7 @@ class Pairer:
             self._timeout is not None
             and time is not None
             and pending.time is not None
-            and time - pending.time - pending.length * self._char_time > self._timeout
+            and time - pending.time - sent_in(pending, self._char_time) > self._timeout
         )
 
     def finish(self) -> list[Item]:
@@ -199,7 +200,7 @@ class Pairer:
                      if isinstance(item, Noise) and item.reason.startswith(CUT_ANSWER)),
                     None,
                 )
-                capture_ended(pending, cut, waited, self._timeout, pending.length * self._char_time)
+                capture_ended(pending, cut, waited, self._timeout, sent_in(pending, self._char_time))
         self._pending = None
         self._release(out)
         return out

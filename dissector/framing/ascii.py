@@ -152,11 +152,13 @@ class AsciiFramer(Awaiting, StreamFramer):
 
     def _changed(self, binary: bytes) -> None:
         """A normal answer to 08/03 (Change ASCII Input Delimiter) echoes the change: its slave's lines may end
-        with CR and that character from now on."""
+        with CR and that character from now on. The echo is the server's word that it took the change, so the
+        character is the data's high byte (the spec's place) whatever the low byte: pymodbus's client sends
+        0021, its server takes 00 and ends its echo and every later line with CR 00."""
         if binary[1] != 8 or len(binary) != 7 or binary[2] << 8 | binary[3] not in DELIMITER_SUBFUNCTIONS:
             return
         character = binary[4]
-        if binary[5] or character in (LF, CR, COLON):
+        if character in (LF, CR, COLON):
             self._delimiters.pop(binary[0], None)
         else:
             self._delimiters[binary[0]] = character

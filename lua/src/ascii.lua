@@ -161,12 +161,13 @@ local function classify_ascii(s, adu, count)
   return nil
 end
 
--- A normal answer to 08/03 echoes the change: its slave's lines may end with CR and that character from now on
--- (s.line_ends, any slave's; LF still ends one); back to LF, CR or ':' drops it (ascii.py _changed).
+-- A normal answer to 08/03 echoes the change: its slave's lines may end with CR and that character (the data's
+-- high byte, whatever the low byte) from now on (s.line_ends, any slave's; LF still ends one); back to LF, CR or
+-- ':' drops it (ascii.py _changed).
 local function changed(s, bin, count)
   if bin[1] ~= 8 or count ~= 7 or not SETS_DELIMITER[bin[2] * 256 + bin[3]] then return end
   local character, delimiters = bin[4], s.delimiters or {}
-  local kept = bin[5] == 0 and character ~= LF and character ~= CR and character ~= COLON
+  local kept = character ~= LF and character ~= CR and character ~= COLON
   delimiters[bin[0]] = kept and character or nil
   s.delimiters, s.line_ends = delimiters, nil
   for _, byte in pairs(delimiters) do

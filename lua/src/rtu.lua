@@ -270,7 +270,6 @@ local function cut_answer(s, b, i, n, silence)
     if scan_match(s, b, i, n, length, true) ~= NONE then return nil end
     length = declared
   end
-  -- (a length rule's reach goes over MAX_ADU too, as match takes such a frame whole; a scan's stops there)
   if length ~= NEED and not (n - i < length and length <= (is_scan and MAX_ADU or MAX_COUNTED)) then return nil end
   if intact_inside(s, b, i, n - i, n, true) then return nil end
   return cut_reason(kind, n - i, length, silence)
