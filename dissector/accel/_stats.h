@@ -543,27 +543,34 @@ static PyObject *stats_table(Stats *st, PyObject *args) {
                          totals[4]);
 }
 
-/* writes(slave, address, table=0) -> the writes counted of that parameter (0: none, or not kept): the report's
- * setpoints (report/html.py). ("b": a slave past 0..255 is an OverflowError; "H" keeps an address's 16 bits.) */
-static PyObject *stats_writes(Stats *st, PyObject *args) {
+/* The parameter writes() and last() are asked of, (slave, address, table=0): 0 with *found it (NULL: not seen, not
+ * kept), -1 with an error. ("b": a slave past 0..255 is an OverflowError; "H" keeps an address's 16 bits.) */
+static int asked_param(Stats *st, PyObject *args, const char *what, const Param **found) {
     unsigned char slave, table = 0;
     unsigned short address;
-    if (!PyArg_ParseTuple(args, "bH|b", &slave, &address, &table)) return NULL;
-    if (table >= PARAM_TABLES) return PyErr_Format(PyExc_ValueError, "writes: table 0..7");
+    if (!PyArg_ParseTuple(args, "bH|b", &slave, &address, &table)) return -1;
+    if (table >= PARAM_TABLES) {
+        PyErr_Format(PyExc_ValueError, "%s: table 0..7", what);
+        return -1;
+    }
     uint32_t key = param_key(slave, table, address);
-    const Param *p = dense_find(&st->params, &PARAM_KIND, &key);
+    *found = dense_find(&st->params, &PARAM_KIND, &key);
+    return 0;
+}
+
+/* writes(slave, address, table=0) -> the writes counted of that parameter (0: none, or not kept): the report's
+ * setpoints (report/html.py). */
+static PyObject *stats_writes(Stats *st, PyObject *args) {
+    const Param *p;
+    if (asked_param(st, args, "writes", &p) < 0) return NULL;
     return PyLong_FromUnsignedLong(p != NULL ? p->counts[PARAM_WRITES] : 0);
 }
 
 /* last(slave, address, table=0) -> the parameter's last value; None where its state is a read status, or none
  * (not seen, not kept): a mask write's old value (history.History._mask). */
 static PyObject *stats_last(Stats *st, PyObject *args) {
-    unsigned char slave, table = 0;
-    unsigned short address;
-    if (!PyArg_ParseTuple(args, "bH|b", &slave, &address, &table)) return NULL;
-    if (table >= PARAM_TABLES) return PyErr_Format(PyExc_ValueError, "last: table 0..7");
-    uint32_t key = param_key(slave, table, address);
-    const Param *p = dense_find(&st->params, &PARAM_KIND, &key);
+    const Param *p;
+    if (asked_param(st, args, "last", &p) < 0) return NULL;
     if (p == NULL || !p->has_last || p->status != NULL) Py_RETURN_NONE;
     return PyLong_FromUnsignedLong(p->last);
 }
