@@ -18,36 +18,18 @@ from typing import Any
 import pytest
 
 from live_bus import ROOT, Bus, Sniffer
+from libmodbus_slave import build_slave
 from lua_harness import ensure_tool
 
 pytestmark = pytest.mark.integration
 
 BAUD = 19200
 SLAVE = 17
-SLAVE_C = r"""
-#include <modbus.h>
-#include <stdio.h>
-#include <errno.h>
-int main(int argc, char **argv) {
-    modbus_t *ctx = modbus_new_rtu(argv[1], 19200, 'N', 8, 1);
-    if (ctx == NULL || modbus_set_slave(ctx, 17) < 0 || modbus_connect(ctx) < 0) {
-        fprintf(stderr, "libmodbus: %s\n", modbus_strerror(errno));
-        return 1;
-    }
-    modbus_mapping_t *map = modbus_mapping_new(2000, 2000, 200, 200);
-    for (int i = 0; i < 200; i++) { map->tab_registers[i] = i * 3; map->tab_input_registers[i] = 1000 + i; }
-    for (int i = 0; i < 2000; i++) { map->tab_bits[i] = i % 3 == 0; map->tab_input_bits[i] = i % 2; }
-    uint8_t query[MODBUS_RTU_MAX_ADU_LENGTH];
-    printf("%s\n", LIBMODBUS_VERSION_STRING);
-    fflush(stdout);
-    for (;;) {
-        int n = modbus_receive(ctx, query);
-        if (n > 0) modbus_reply(ctx, query, n, map);
-        else if (n < 0 && errno != EMBBADCRC) break;
-    }
-    return 0;
-}
-"""
+MAPPING = (
+    'modbus_mapping_t *map = modbus_mapping_new(2000, 2000, 200, 200);\n'
+    'for (int i = 0; i < 200; i++) { map->tab_registers[i] = i * 3; map->tab_input_registers[i] = 1000 + i; }\n'
+    'for (int i = 0; i < 2000; i++) { map->tab_bits[i] = i % 3 == 0; map->tab_input_bits[i] = i % 2; }'
+)
 COILS_WRITTEN = [str(i % 2) for i in range(1968)]
 REGISTERS_WRITTEN = [str(i * 7) for i in range(123)]
 # (mbpoll's options, the values it writes, function, start, quantity, kind of the answer)
@@ -65,19 +47,6 @@ POLLS: list[tuple[list[str], list[str], int, int, int, str]] = [
 ]
 
 
-def _slave_binary(tmp_path: Path) -> Path:
-    ensure_tool("pkg-config", "pkg-config")
-    if subprocess.run(["pkg-config", "--exists", "libmodbus"]).returncode != 0:
-        subprocess.run(["apt-get", "install", "-y", "libmodbus-dev"], check=True, capture_output=True)
-    source = tmp_path / "slave.c"
-    source.write_text(SLAVE_C, encoding="utf-8")
-    flags = subprocess.run(["pkg-config", "--cflags", "--libs", "libmodbus"], capture_output=True, text=True,
-                           check=True).stdout.split()
-    binary = tmp_path / "slave"
-    subprocess.run([ensure_tool("cc", "gcc"), str(source), "-o", str(binary), *flags], check=True)
-    return binary
-
-
 def _shown(output: str) -> dict[int, int]:
     """mbpoll's `[reference]: value` lines: the values it read, by protocol address (reference - 1)."""
     return {int(reference) - 1: int(value) for reference, value in re.findall(r"^\[(\d+)\]:\s+(-?\d+)$", output, re.M)}
@@ -89,7 +58,7 @@ def _values(item: dict[str, Any]) -> dict[int, int]:
 
 def test_mbpoll_against_a_libmodbus_slave_sniffed_live(tmp_path: Path) -> None:
     mbpoll = ensure_tool("mbpoll", "mbpoll")
-    binary = _slave_binary(tmp_path)
+    binary = build_slave(tmp_path, MAPPING)
     bus = Bus(baud=BAUD, slave=False, seed=69)
     slave = subprocess.Popen([str(binary), bus.b_path], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     pcap = tmp_path / "mbpoll.pcap"

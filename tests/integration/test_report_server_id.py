@@ -18,34 +18,14 @@ from pathlib import Path
 
 import pytest
 
-from lua_harness import ensure_tool, lua_items, run_tshark, write_pcap
+from libmodbus_slave import build_slave
+from lua_harness import lua_items, run_tshark, write_pcap
 from server_id import REQUEST, RESPONSE, check_decoded
 
 pytestmark = pytest.mark.integration
 
 
-SLAVE_C = r"""
-#include <modbus.h>
-#include <stdio.h>
-#include <errno.h>
-int main(int argc, char **argv) {
-    modbus_t *ctx = modbus_new_rtu(argv[1], 19200, 'N', 8, 1);
-    if (ctx == NULL || modbus_set_slave(ctx, 17) < 0 || modbus_connect(ctx) < 0) {
-        fprintf(stderr, "libmodbus: %s\n", modbus_strerror(errno));
-        return 1;
-    }
-    modbus_mapping_t *map = modbus_mapping_new(0, 0, 16, 0);
-    uint8_t query[MODBUS_RTU_MAX_ADU_LENGTH];
-    printf("%s\n", LIBMODBUS_VERSION_STRING);
-    fflush(stdout);
-    for (;;) {
-        int n = modbus_receive(ctx, query);
-        if (n > 0) modbus_reply(ctx, query, n, map);
-        else if (n < 0 && errno != EMBBADCRC) break;
-    }
-    return 0;
-}
-"""
+MAPPING = 'modbus_mapping_t *map = modbus_mapping_new(0, 0, 16, 0);'
 
 
 def test_plugin_shows_the_fields(tmp_path: Path) -> None:
@@ -65,19 +45,6 @@ def test_plugin_shows_the_fields(tmp_path: Path) -> None:
     assert odd_items[1].texts["warning"] == ["run indicator 0x12 is neither 0x00 (OFF) nor 0xFF (ON)"]
 
 
-def _libmodbus_slave(tmp_path: Path) -> Path:
-    ensure_tool("pkg-config", "pkg-config")
-    if subprocess.run(["pkg-config", "--exists", "libmodbus"]).returncode != 0:
-        ensure_tool("cc", "gcc")
-        subprocess.run(["apt-get", "install", "-y", "libmodbus-dev"], check=True, capture_output=True)
-    source = tmp_path / "slave.c"
-    source.write_text(SLAVE_C, encoding="utf-8")
-    flags = subprocess.run(["pkg-config", "--cflags", "--libs", "libmodbus"], capture_output=True, text=True, check=True)
-    binary = tmp_path / "slave"
-    subprocess.run([ensure_tool("cc", "gcc"), str(source), "-o", str(binary), *flags.stdout.split()], check=True)
-    return binary
-
-
 def _read_answer(fd: int, length: int, timeout: float = 5.0) -> bytes:
     data, deadline = b"", time.monotonic() + timeout
     while len(data) < length and time.monotonic() < deadline:
@@ -88,7 +55,7 @@ def _read_answer(fd: int, length: int, timeout: float = 5.0) -> bytes:
 
 
 def test_real_libmodbus_slave_answer_decoded(tmp_path: Path) -> None:
-    binary = _libmodbus_slave(tmp_path)
+    binary = build_slave(tmp_path, MAPPING)
     master, slave = os.openpty()
     tty.setraw(master)
     path = os.ttyname(slave)
