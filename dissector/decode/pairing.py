@@ -42,9 +42,10 @@ does not answer. Such requests are noted as such (texts listen_only, listen_only
 an exception to the FC8 04 itself says the slave did not enter the mode; a damaged request (bad CRC or LRC)
 is not acted on. The 08/04's sub-function alone after it (intact, too short for a request) is its slave's
 answer, which the spec's slave does not give (pymodbus's server answers so: warned, listen_only_echo); the
-slave is taken to be in the mode all the same, as its answer acknowledges it. A frame identical to such a request (FC5, FC6, FC8's echo), which the framer reads as its
-answer, is the master's repeat of it (the retry rule's _retried when the slave answers that: after 08/01); a
-frame that differs from it is the slave's answer (it did not take the mode), as the framer reads it.
+slave is taken to be in the mode all the same, as its answer acknowledges it. A frame identical to such a
+request (FC5, FC6, FC8's echo), which the framer reads as its answer, is the master's repeat of it (the retry
+rule's _retried when the slave answers that: after 08/01); a frame that differs from it is the slave's answer
+(it did not take the mode), as the framer reads it.
 The state is per slave: the C engine, which does not keep it, hands the transactions of a
 slave in the mode to the Python stages (in_listen_only; listen_changed: the slaves it must ask about again).
 
