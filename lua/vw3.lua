@@ -7267,9 +7267,10 @@ local function pair(st, f)
     end
   end
   -- The open 08/04's sub-function alone, intact: its slave's answer after all, against the spec (pairing.py
-  -- _echoes_listen_only: pymodbus's server answers so), too short to be the master's repeat.
+  -- _echoes_listen_only: pymodbus's server answers so), too short to be the master's repeat (shorter than the
+  -- 08/04, of the same mode: its length, which stays once its bytes went, take_frame).
   if f.kind == REQUEST and f.fn == FC8_CODE and f.data_len == 2 and pending ~= nil and st.listening ~= nil and
-      st.listening[f.slave] == pending and pending.data_len > 2 and f.crc == f.crc_expected and
+      st.listening[f.slave] == pending and pending.length > f.length and f.crc == f.crc_expected and
       f.b[f.data_at] * 256 + f.b[f.data_at + 1] == SUB_LISTEN_ONLY then
     f.kind = RESPONSE
     warn(f, PLAIN.listen_only_echo)
@@ -10101,6 +10102,7 @@ function proto.init()
   -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
   -- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
   rtac_times = {}
+  rtac_payload = false -- (Decode As gave RTAC data to VW3: dissector.lua rtac_time)
   lane.parts = {} -- (records captured in part, by number: lua/src/stream.lua lane.captured_in_part)
   apply_prefs()
   -- Streams of records: the serial capture's (state); the others (one per UDP conversation, one per TCP
@@ -11244,15 +11246,20 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
   cols.info = info or (summaries and concat(summaries, "; ")) or ""
 end
 
+-- tshark dissects a record again only in -2's second pass (its live captures dissect each record once):
+-- there any record dissected again ends the first pass, the newest too (a file of one record). Wireshark
+-- redraws the newest record's row while it captures (nil: a host without gui_enabled, the test stub).
+local TSHARK = gui_enabled ~= nil and not gui_enabled()
+
 -- The first pass is over: what still waits at the end of the capture is framed now, in every stream.
 -- The first pass is over when Wireshark dissects again a record older than the newest (tshark -2, the
--- packet details): then the choices apply to every frame (lane.again). A live capture dissects the
--- record just read again (tshark -w -P): its records keep their single pass.
+-- packet details), or tshark any record: then the choices apply to every frame (lane.again). Wireshark
+-- capturing dissects the record just read again (its row drawn): its records keep their single pass.
 -- (newest_record: the newest record's number, reset with each capture by proto.init)
 local function finish_all(number)
   for _, st in pairs(udp_states) do finish_safely(st) end
   finish_safely(state)
-  if number < newest_record then
+  if number < newest_record or TSHARK then
     for _, st in pairs(udp_states) do lane.again(st) end
     lane.again(state)
   end
@@ -11496,18 +11503,30 @@ if ok_rtac and rtac ~= nil then rtac:add_for_decode_as(proto) end
 
 -- RTAC serial records: note the RTAC's own timestamp (u32 seconds, u32 microseconds, big-endian: when the
 -- device saw the bytes, which response times need), then hand the record to Wireshark's RTAC dissector.
+-- A record shorter than the 12-byte header tells no time and Wireshark's RTAC dissector takes none of it
+-- (Data): where Decode As gave this capture's RTAC data to VW3 (rtac_payload: a record of it reached VW3,
+-- Lua cannot read that table), its bytes are VW3's, at its record's time, as vw3-decode reads them
+-- (sources/common.py rtac_header: noise).
 local RTAC_ENCAP = wtap.RTAC_SERIAL
 local ok_original, rtac_original = pcall(function() return RTAC_ENCAP and wtap_encap:get_dissector(RTAC_ENCAP) end)
 if ok_original and rtac_original ~= nil then
   local rtac_time = Proto("vw3rtac", "VW3 RTAC timestamp")
+  local vw3_handle = Dissector.get("vw3")
   function rtac_time.dissector(tvb, pinfo, tree)
-    if tvb:len() >= 8 and not pinfo.visited then
+    local n = tvb:len()
+    if n < 12 and rtac_payload then return vw3_handle:call(tvb, pinfo, tree) end
+    if n >= 12 and not pinfo.visited then
       local seconds, micros = tvb:range(0, 4):uint(), tvb:range(4, 4):uint()
       local number, ns = pinfo.number, lane.rtac_ns(seconds, micros)
       rtac_times[number] = ns -- (in ns, exact: show.lua record_ns)
       -- A record of the header alone (an RTAC event: a break, a control line) reaches no VW3 dissection, yet
       -- the tap was recording then (vw3.pairing's ended; sources/common.py record_chunks' `stamped`).
-      if tvb:len() <= 12 and number >= newest_record then recorded_until = ns end
+      if n == 12 and number >= newest_record then recorded_until = ns end
+      if n > 12 and not rtac_payload then
+        local taken = rtac_original:call(tvb, pinfo, tree)
+        rtac_payload = (record_streams[number] or state).records[number] ~= nil
+        return taken
+      end
     end
     return rtac_original:call(tvb, pinfo, tree)
   end

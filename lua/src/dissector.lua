@@ -190,18 +190,30 @@ if ok_rtac and rtac ~= nil then rtac:add_for_decode_as(proto) end
 
 -- RTAC serial records: note the RTAC's own timestamp (u32 seconds, u32 microseconds, big-endian: when the
 -- device saw the bytes, which response times need), then hand the record to Wireshark's RTAC dissector.
+-- A record shorter than the 12-byte header tells no time and Wireshark's RTAC dissector takes none of it
+-- (Data): where Decode As gave this capture's RTAC data to VW3 (rtac_payload: a record of it reached VW3,
+-- Lua cannot read that table), its bytes are VW3's, at its record's time, as vw3-decode reads them
+-- (sources/common.py rtac_header: noise).
 local RTAC_ENCAP = wtap.RTAC_SERIAL
 local ok_original, rtac_original = pcall(function() return RTAC_ENCAP and wtap_encap:get_dissector(RTAC_ENCAP) end)
 if ok_original and rtac_original ~= nil then
   local rtac_time = Proto("vw3rtac", "VW3 RTAC timestamp")
+  local vw3_handle = Dissector.get("vw3")
   function rtac_time.dissector(tvb, pinfo, tree)
-    if tvb:len() >= 8 and not pinfo.visited then
+    local n = tvb:len()
+    if n < 12 and rtac_payload then return vw3_handle:call(tvb, pinfo, tree) end
+    if n >= 12 and not pinfo.visited then
       local seconds, micros = tvb:range(0, 4):uint(), tvb:range(4, 4):uint()
       local number, ns = pinfo.number, lane.rtac_ns(seconds, micros)
       rtac_times[number] = ns -- (in ns, exact: show.lua record_ns)
       -- A record of the header alone (an RTAC event: a break, a control line) reaches no VW3 dissection, yet
       -- the tap was recording then (vw3.pairing's ended; sources/common.py record_chunks' `stamped`).
-      if tvb:len() <= 12 and number >= newest_record then recorded_until = ns end
+      if n == 12 and number >= newest_record then recorded_until = ns end
+      if n > 12 and not rtac_payload then
+        local taken = rtac_original:call(tvb, pinfo, tree)
+        rtac_payload = (record_streams[number] or state).records[number] ~= nil
+        return taken
+      end
     end
     return rtac_original:call(tvb, pinfo, tree)
   end

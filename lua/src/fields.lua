@@ -94,6 +94,7 @@ function proto.init()
   -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
   -- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
   rtac_times = {}
+  rtac_payload = false -- (Decode As gave RTAC data to VW3: dissector.lua rtac_time)
   lane.parts = {} -- (records captured in part, by number: lua/src/stream.lua lane.captured_in_part)
   apply_prefs()
   -- Streams of records: the serial capture's (state); the others (one per UDP conversation, one per TCP

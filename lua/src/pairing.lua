@@ -212,9 +212,10 @@ local function pair(st, f)
     end
   end
   -- The open 08/04's sub-function alone, intact: its slave's answer after all, against the spec (pairing.py
-  -- _echoes_listen_only: pymodbus's server answers so), too short to be the master's repeat.
+  -- _echoes_listen_only: pymodbus's server answers so), too short to be the master's repeat (shorter than the
+  -- 08/04, of the same mode: its length, which stays once its bytes went, take_frame).
   if f.kind == REQUEST and f.fn == FC8_CODE and f.data_len == 2 and pending ~= nil and st.listening ~= nil and
-      st.listening[f.slave] == pending and pending.data_len > 2 and f.crc == f.crc_expected and
+      st.listening[f.slave] == pending and pending.length > f.length and f.crc == f.crc_expected and
       f.b[f.data_at] * 256 + f.b[f.data_at + 1] == SUB_LISTEN_ONLY then
     f.kind = RESPONSE
     warn(f, PLAIN.listen_only_echo)

@@ -431,15 +431,20 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
   cols.info = info or (summaries and concat(summaries, "; ")) or ""
 end
 
+-- tshark dissects a record again only in -2's second pass (its live captures dissect each record once):
+-- there any record dissected again ends the first pass, the newest too (a file of one record). Wireshark
+-- redraws the newest record's row while it captures (nil: a host without gui_enabled, the test stub).
+local TSHARK = gui_enabled ~= nil and not gui_enabled()
+
 -- The first pass is over: what still waits at the end of the capture is framed now, in every stream.
 -- The first pass is over when Wireshark dissects again a record older than the newest (tshark -2, the
--- packet details): then the choices apply to every frame (lane.again). A live capture dissects the
--- record just read again (tshark -w -P): its records keep their single pass.
+-- packet details), or tshark any record: then the choices apply to every frame (lane.again). Wireshark
+-- capturing dissects the record just read again (its row drawn): its records keep their single pass.
 -- (newest_record: the newest record's number, reset with each capture by proto.init)
 local function finish_all(number)
   for _, st in pairs(udp_states) do finish_safely(st) end
   finish_safely(state)
-  if number < newest_record then
+  if number < newest_record or TSHARK then
     for _, st in pairs(udp_states) do lane.again(st) end
     lane.again(state)
   end
