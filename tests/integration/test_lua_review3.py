@@ -64,7 +64,7 @@ def test_ascii_check_is_an_lrc(tmp_path, lrc: str) -> None:
     shown = [line.strip() for line in tree.splitlines() if "LRC" in line or "CRC" in line]
     if lrc == "A3":
         assert shown == [
-            "VW3 Modbus ASCII, 2 Write Single Register request 9001 = 10 [provisional] BAD LRC",
+            "VW3 Modbus ASCII, 2 Write Single Register request 9001 = 10 BAD LRC",
             "LRC: 0xa3", "[Expected LRC: 0xa2]", "[LRC OK: False]",
             "[Expert Info (Error/Checksum): Bad LRC: 0xA3, expected 0xA2]", "[Bad LRC: 0xA3, expected 0xA2]"]
     else:

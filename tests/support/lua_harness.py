@@ -237,9 +237,7 @@ def python_items(
     file read twice, as the plugin shows it with tshark -2 (profile `auto` names a slave's frames with
     the choice made over the whole capture, issue 27). `one_pass`: the file on standard input, read
     once, as the plugin shows it in tshark's single pass (a slave's frames named as its choice stands
-    then). A capture of one record is read once either way: tshark -2 keeps its single pass there (the
-    plugin cannot tell its second dissection from a live capture's, lua/README.md "One pass and two")."""
-    one_pass = one_pass or len(record_lengths(pcap)) == 1
+    then)."""
     command = [sys.executable, "-m", "dissector", "-" if one_pass else str(pcap), "--json", *options]
     for profile in plugin_profiles(profiles):
         command += ["--profile", profile]
