@@ -11,7 +11,6 @@ import io
 import json
 import os
 import re
-import shutil
 import signal
 import statistics
 import struct
@@ -28,6 +27,7 @@ from dissector.app.live import run_live
 from dissector.protocol.crc import with_crc
 from dissector.render.summary import summary_line
 from live_bus import ROOT, Bus, PymodbusSlave, Sniffer, byte_records, our_master, paced_writer, read_pcap, transactions
+from lua_harness import ensure_tool
 
 pytestmark = pytest.mark.integration
 BAUD = 115200
@@ -39,14 +39,7 @@ KEYS = ("frame", "kind", "raw", "slave", "function", "request_frame", "response_
 
 def need_tshark() -> str:
     """tshark, installed when missing (never a silent skip)."""
-    path = shutil.which("tshark")
-    if path is None:
-        env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
-        subprocess.run(["flock", "/tmp/apt.lock", "apt-get", "install", "-y", "tshark"], check=True,
-                       env=env, capture_output=True, timeout=900)
-        path = shutil.which("tshark")
-    assert path is not None, "tshark could not be installed"
-    return path
+    return ensure_tool("tshark", "tshark")
 
 
 def tshark(*args: str, stdin: bytes | None = None) -> list[str]:

@@ -4,9 +4,7 @@ from __future__ import annotations
 
 import html
 import json
-import os
 import re
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -14,26 +12,13 @@ from pathlib import Path
 import pytest
 
 from conftest import ROOT
+from lua_harness import ensure_tool
 
 CAPTURES = ROOT / "captures"
 
 
 def chromium() -> str:
-    path = shutil.which("chromium")
-    if path is not None:
-        return path
-    if os.geteuid() != 0:
-        pytest.fail("chromium is missing and we are not root to install it")
-    env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
-    for args in (["apt-get", "update"], ["apt-get", "install", "-y", "chromium"]):
-        # One apt at a time on a shared machine.
-        result = subprocess.run(["flock", "/tmp/apt.lock", *args], capture_output=True, text=True, env=env, timeout=1800)
-        if result.returncode != 0:
-            pytest.fail(f"{' '.join(args)} failed: {result.stderr[-2000:]}")
-    path = shutil.which("chromium")
-    if path is None:
-        pytest.fail("chromium installed but not on PATH")
-    return path
+    return ensure_tool("chromium", "chromium")
 
 
 def report(tmp_path: Path, capture: str) -> Path:

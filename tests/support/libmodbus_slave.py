@@ -5,7 +5,7 @@ from __future__ import annotations
 import subprocess
 from pathlib import Path
 
-from lua_harness import ensure_tool
+from lua_harness import ensure_tool, install_package
 
 # The slave: `slave PTY` answers as slave 17 at 19200 baud from the mapping MAPPING sets up, printing libmodbus's
 # version first (the test waits for it: then the slave listens); a CRC error is passed over as libmodbus does.
@@ -35,11 +35,10 @@ int main(int argc, char **argv) {
 
 def build_slave(tmp_path: Path, mapping: str) -> Path:
     """The slave compiled in tmp_path, `mapping` the C that declares and fills `modbus_mapping_t *map`
-    (installs libmodbus-dev where missing: CI runs as root)."""
-    ensure_tool("pkg-config", "pkg-config")
-    if subprocess.run(["pkg-config", "--exists", "libmodbus"]).returncode != 0:
-        ensure_tool("cc", "gcc")
-        subprocess.run(["apt-get", "install", "-y", "libmodbus-dev"], check=True, capture_output=True)
+    (installs libmodbus-dev where missing, as ensure_tool a tool: CI runs as root)."""
+    pkg_config = ensure_tool("pkg-config", "pkg-config")
+    install_package("libmodbus-dev", lambda: subprocess.run([pkg_config, "--exists", "libmodbus"]).returncode == 0,
+                    "libmodbus")
     source = tmp_path / "slave.c"
     source.write_text(_SOURCE.replace("MAPPING", mapping), encoding="utf-8")
     flags = subprocess.run(["pkg-config", "--cflags", "--libs", "libmodbus"], capture_output=True, text=True,

@@ -15,7 +15,7 @@ import sys
 import shutil
 import subprocess
 import xml.etree.ElementTree as ET
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -43,21 +43,29 @@ def ensure_tool(command: str, package: str) -> str:
     path = shutil.which(command)
     if path is not None:
         return path
-    if os.geteuid() != 0:
-        pytest.fail(f"{command} is missing and we are not root to install {package}")
-    env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
-    # (one install at a time: the README's command runs two pytest-xdist workers; the lock the serial tests' flock takes)
-    with open("/tmp/apt.lock", "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        if shutil.which(command) is None:
-            for args in (["apt-get", "update"], ["apt-get", "install", "-y", package]):
-                result = subprocess.run(args, capture_output=True, text=True, env=env, timeout=900)
-                if result.returncode != 0:
-                    pytest.fail(f"{' '.join(args)} failed: {result.stderr[-2000:]}")
+    install_package(package, lambda: shutil.which(command) is not None, command)
     path = shutil.which(command)
     if path is None:
         pytest.fail(f"{package} installed but {command} is still not on PATH")
     return path
+
+
+def install_package(package: str, present: Callable[[], bool], what: str) -> None:
+    """Install the Debian package unless `present()` (asked again under the lock), when we are root; fail (never
+    skip) otherwise: `what` names what is missing."""
+    if present():
+        return
+    if os.geteuid() != 0:
+        pytest.fail(f"{what} is missing and we are not root to install {package}")
+    env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
+    # (one install at a time: the README's command runs two pytest-xdist workers; the lock the serial tests' flock takes)
+    with open("/tmp/apt.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not present():
+            for args in (["apt-get", "update"], ["apt-get", "install", "-y", package]):
+                result = subprocess.run(args, capture_output=True, text=True, env=env, timeout=1800)
+                if result.returncode != 0:
+                    pytest.fail(f"{' '.join(args)} failed: {result.stderr[-2000:]}")
 
 
 def write_pcap(path: Path, records: Iterable[tuple[bytes, float]]) -> Path:
